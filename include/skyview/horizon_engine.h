@@ -1,0 +1,72 @@
+#pragma once
+// The horizon of a cell, per azimuth, is the elevation angle of the highest terrain seen in
+// that direction. Every method that computes it (sampled, march, sweep, raycast) sits behind
+// HorizonEngine so they share products, tests and one benchmark.
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "skyview/progress.h"
+#include "skyview/terrain.h"
+
+namespace skyview {
+
+struct HorizonParams {
+  int directions = 16;     // azimuth sectors, the first centred on north, clockwise
+  int samples = 16;        // samples per direction (sampled method)
+  double radius = 0.0;     // search radius in metres; 0 = method default (unlimited for sweep)
+  std::uint64_t seed = 0;  // per-cell rotation seed (sampled method)
+  bool lower = false;      // also the lowest elevation angle per direction (negative openness)
+  bool early_exit = true;  // max-height pyramid termination, results unchanged
+  int rays = 256;          // rays per cell for Monte-Carlo estimates (raycast)
+  double refraction = 0.13;        // refraction coefficient k when curvature is on
+  std::string curvature = "auto";  // auto | on | off
+};
+
+// Horizons of a window of cells, all directions of one cell stored together.
+struct HorizonField {
+  int cols = 0, rows = 0, directions = 0;
+  std::vector<float> upper;     // radians, [cell][direction]; NaN on nodata cells
+  std::vector<float> lower;     // radians, lowest angle seen; empty unless requested
+  std::vector<float> rotation;  // per-cell azimuth offset of the direction set (radians); empty = 0
+  // Monte-Carlo estimates some methods (raycast) give directly; empty otherwise.
+  std::vector<float> svf_direct;
+  std::vector<float> svf_stderr;
+
+  void resize(int c, int r, int d, bool with_lower);
+  std::size_t cell(int col, int row) const { return static_cast<std::size_t>(row) * cols + col; }
+  float* upper_of(std::size_t cell) { return upper.data() + cell * directions; }
+  const float* upper_of(std::size_t cell) const { return upper.data() + cell * directions; }
+  float* lower_of(std::size_t cell) { return lower.data() + cell * directions; }
+  const float* lower_of(std::size_t cell) const { return lower.data() + cell * directions; }
+  double azimuth(std::size_t cell, int k) const;  // centre azimuth of sector k for a cell
+};
+
+class HorizonEngine {
+ public:
+  virtual ~HorizonEngine() = default;
+  virtual std::string_view name() const = 0;
+  virtual std::string_view citation() const = 0;
+  // Parameters as recorded in output metadata.
+  virtual std::map<std::string, std::string> describe() const = 0;
+  // Effective search radius in metres (infinity when unlimited).
+  virtual double radius() const = 0;
+  // Fills `out` for the cells of `window`; terrain outside the window (the halo) occludes.
+  virtual void compute(const Terrain& terrain, const Window& window, HorizonField& out,
+                       ProgressCounter& progress) const = 0;
+};
+
+// Names accepted by --method, in the order the docs list them.
+std::vector<std::string> horizon_method_names();
+// Throws skyview::Error for an unknown name or invalid parameters.
+std::unique_ptr<HorizonEngine> make_horizon_engine(std::string_view method, const HorizonParams& params);
+
+// Azimuth of sector k's centre (radians, clockwise from north).
+inline double sector_azimuth(int k, int directions) {
+  return 2.0 * 3.14159265358979323846 * k / directions;
+}
+
+}  // namespace skyview

@@ -1,0 +1,62 @@
+#pragma once
+// Reading height rasters from, and writing result bands to, any GDAL format. Writes are
+// atomic: the file is built under a temporary name beside the target and renamed into place,
+// so a failed or interrupted run never leaves a half-written output or clobbers an old one.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "skyview/grid.h"
+#include "skyview/terrain.h"
+
+namespace skyview {
+
+// Registers GDAL drivers once and routes GDAL's own messages to stderr as one line each.
+void init_gdal();
+
+struct ReadOptions {
+  int band = 1;
+  double z_scale = 1.0;  // vertical unit factor to metres (0.3048006096 for US survey feet)
+  // Undeclared NaN cells count as nodata (with a warning) instead of an error.
+  bool nan_is_nodata = true;
+};
+
+struct ReadReport {
+  std::int64_t nodata_cells = 0;
+  std::int64_t undeclared_nan_cells = 0;  // NaN where the band declares another nodata value
+  bool has_nodata_value = false;
+  double nodata_value = 0.0;
+};
+
+// Loads one band as a Terrain. Throws skyview::Error (one line, naming the file) for a
+// missing/unreadable file, a band out of range, a raster smaller than 2x2, an all-nodata
+// band, infinite values, or a CRS that cannot give ground distances.
+Terrain read_terrain(const std::string& path, const ReadOptions& options, ReadReport* report = nullptr);
+
+struct OutputBand {
+  std::string description;
+  std::string unit;               // "degrees", "1" for ratios ...
+  const float* values = nullptr;  // width*height, NaN = nodata
+  std::map<std::string, std::string> metadata;
+};
+
+struct WriteOptions {
+  std::string format = "GTiff";
+  std::vector<std::string> creation_options;  // KEY=VALUE, override the defaults
+  bool overwrite = false;
+  float nodata = -9999.0f;
+  std::map<std::string, std::string> metadata;  // dataset-level (run parameters)
+};
+
+// Throws skyview::Error if `path` exists and !overwrite, or if writing fails.
+void write_bands(const std::string& path, int width, int height, const GeoReference& georef,
+                 const std::vector<OutputBand>& bands, const WriteOptions& options);
+
+// Writes a greyscale 8-bit PNG of `values` scaled linearly from [lo, hi] to [0, 255]; nodata black.
+void write_preview_png(const std::string& path, int width, int height, const float* values, double lo,
+                       double hi, bool overwrite);
+
+// Refuses early (before any computation) when an output exists and !overwrite.
+void check_output_writable(const std::string& path, bool overwrite);
+
+}  // namespace skyview

@@ -1,0 +1,41 @@
+#pragma once
+// The height field every horizon method reads: heights relative to a base elevation kept in
+// double, so that millimetre relief on an 8848 m summit survives float storage; nodata as NaN.
+// A Terrain may be a window (plus halo) of a larger raster: `origin_col/row` place it in the
+// full raster and `full_width/height` give that raster's size, so results for a tile are
+// the same as for the whole raster.
+#include <cmath>
+#include <cstdint>
+
+#include "skyview/georeference.h"
+#include "skyview/grid.h"
+#include "skyview/ground_frame.h"
+
+namespace skyview {
+
+struct Terrain {
+  Grid<float> heights;        // metres above `base_height`, NaN where nodata
+  double base_height = 0.0;   // metres
+  GroundFrame frame = GroundFrame::uniform(1.0);
+  GeoReference georef;        // of this buffer
+  int origin_col = 0, origin_row = 0;   // where this buffer starts in the full raster
+  int full_width = 0, full_height = 0;  // size of the full raster
+
+  int width() const { return heights.width(); }
+  int height() const { return heights.height(); }
+  bool valid(int col, int row) const { return !std::isnan(heights(col, row)); }
+  double absolute_height(int col, int row) const { return base_height + heights(col, row); }
+  // Global cell id, independent of tiling (seeds per-cell random rotations).
+  std::uint64_t global_id(int col, int row) const {
+    return static_cast<std::uint64_t>(row + origin_row) * 0x1000000ull + static_cast<std::uint64_t>(col + origin_col);
+  }
+};
+
+// A rectangle of cells in a Terrain buffer's coordinates.
+struct Window {
+  int col0 = 0, row0 = 0, cols = 0, rows = 0;
+  static Window whole(const Terrain& t) { return {0, 0, t.width(), t.height()}; }
+  std::int64_t cells() const { return static_cast<std::int64_t>(cols) * rows; }
+};
+
+}  // namespace skyview

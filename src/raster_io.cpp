@@ -1,0 +1,256 @@
+#include "skyview/raster_io.h"
+
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <cpl_string.h>
+#include <cpl_vsi.h>
+#include <gdal_priv.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <mutex>
+#include <sstream>
+
+#include "skyview/error.h"
+
+namespace skyview {
+
+namespace {
+
+void CPL_STDCALL quiet_error_handler(CPLErr level, CPLErrorNum, const char* msg) {
+  // Failures become skyview::Error with our own wording; only warnings go straight to stderr.
+  if (level == CE_Warning) std::fprintf(stderr, "Warning: %s\n", msg);
+}
+
+struct DatasetCloser {
+  void operator()(GDALDataset* ds) const { GDALClose(ds); }
+};
+using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
+
+bool path_exists(const std::string& path) {
+  VSIStatBufL st;
+  return VSIStatL(path.c_str(), &st) == 0;
+}
+
+std::string last_gdal_error() {
+  const char* m = CPLGetLastErrorMsg();
+  return m && *m ? std::string(m) : std::string("unknown GDAL error");
+}
+
+}  // namespace
+
+void init_gdal() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    GDALAllRegister();
+    CPLSetErrorHandler(quiet_error_handler);
+  });
+}
+
+Terrain read_terrain(const std::string& path, const ReadOptions& options, ReadReport* report) {
+  init_gdal();
+  if (!path_exists(path)) throw Error("cannot open '" + path + "': no such file");
+  CPLErrorReset();
+  DatasetPtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  if (!ds) throw Error("cannot open '" + path + "' as a raster: " + last_gdal_error());
+  const int width = ds->GetRasterXSize(), height = ds->GetRasterYSize();
+  if (options.band < 1 || options.band > ds->GetRasterCount()) {
+    throw Error("'" + path + "' has " + std::to_string(ds->GetRasterCount()) + " band(s); band " +
+                std::to_string(options.band) + " does not exist");
+  }
+  if (static_cast<std::int64_t>(width) * height < 2) {
+    throw Error("'" + path + "' has a single cell: a horizon needs at least two cells");
+  }
+  if (!(options.z_scale > 0.0) || !std::isfinite(options.z_scale)) throw Error("--z-scale must be a positive number");
+  GDALRasterBand* band = ds->GetRasterBand(options.band);
+  std::vector<double> values(static_cast<std::size_t>(width) * height);
+  if (band->RasterIO(GF_Read, 0, 0, width, height, values.data(), width, height, GDT_Float64, 0, 0) != CE_None) {
+    throw Error("cannot read band " + std::to_string(options.band) + " of '" + path + "': " + last_gdal_error());
+  }
+  int has_nodata = 0;
+  const double nodata = band->GetNoDataValue(&has_nodata);
+  const bool nodata_is_nan = has_nodata && std::isnan(nodata);
+
+  ReadReport rep;
+  rep.has_nodata_value = has_nodata != 0;
+  rep.nodata_value = nodata;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    double& v = values[i];
+    if (std::isnan(v)) {
+      if (!nodata_is_nan) {
+        if (!options.nan_is_nodata) {
+          throw Error("'" + path + "' holds NaN at cell (" + std::to_string(i % width) + ", " + std::to_string(i / width) +
+                      ") but its nodata value is not NaN");
+        }
+        ++rep.undeclared_nan_cells;
+      }
+      ++rep.nodata_cells;
+      continue;
+    }
+    if (has_nodata && v == nodata) {
+      v = std::numeric_limits<double>::quiet_NaN();
+      ++rep.nodata_cells;
+      continue;
+    }
+    if (std::isinf(v)) {
+      throw Error("'" + path + "' holds an infinite height at cell (" + std::to_string(i % width) + ", " +
+                  std::to_string(i / width) + "); set it to the nodata value");
+    }
+    v *= options.z_scale;
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  if (rep.nodata_cells == static_cast<std::int64_t>(values.size())) {
+    throw Error("'" + path + "' band " + std::to_string(options.band) + " holds only nodata");
+  }
+  if (hi - lo > 1e5) throw Error("'" + path + "' spans more than 100 km of height; check --z-scale and nodata");
+
+  Terrain t;
+  t.base_height = 0.5 * (lo + hi);
+  t.heights = Grid<float>(width, height);
+  for (std::size_t i = 0; i < values.size(); ++i) t.heights.values()[i] = static_cast<float>(values[i] - t.base_height);
+  double gt[6];
+  t.georef.has_geotransform = ds->GetGeoTransform(gt) == CE_None;
+  std::copy(gt, gt + 6, t.georef.geotransform.begin());
+  if (t.georef.has_geotransform && (gt[1] * gt[5] - gt[2] * gt[4]) == 0.0) {
+    throw Error("'" + path + "' has a degenerate geotransform (zero cell size)");
+  }
+  if (const OGRSpatialReference* srs = ds->GetSpatialRef()) {
+    char* wkt = nullptr;
+    const char* opts[] = {"FORMAT=WKT2_2018", nullptr};
+    srs->exportToWkt(&wkt, opts);
+    t.georef.crs_wkt = wkt ? wkt : "";
+    CPLFree(wkt);
+  }
+  try {
+    t.frame = GroundFrame(t.georef, width, height);
+  } catch (const Error& e) {
+    throw Error("'" + path + "': " + e.what());
+  }
+  t.full_width = width;
+  t.full_height = height;
+  if (report) *report = rep;
+  return t;
+}
+
+void check_output_writable(const std::string& path, bool overwrite) {
+  if (path.empty()) throw Error("no output file given");
+  if (path_exists(path) && !overwrite) throw Error("output '" + path + "' exists; use --overwrite to replace it");
+  const auto dir = std::filesystem::path(path).parent_path();
+  if (!dir.empty() && !std::filesystem::is_directory(dir)) {
+    throw Error("cannot write '" + path + "': folder '" + dir.string() + "' does not exist");
+  }
+}
+
+namespace {
+
+std::string temporary_name(const std::string& path) {
+  const std::filesystem::path p(path);
+  std::ostringstream name;
+  name << "." << p.stem().string() << ".skyview-tmp-" << ::getpid() << p.extension().string();
+  return (p.parent_path() / name.str()).string();
+}
+
+// Copies the in-memory dataset to `path` through a temporary file and renames it into place.
+void commit_dataset(GDALDataset* mem, const std::string& path, const std::string& format,
+                    const std::vector<std::string>& creation_options, bool overwrite) {
+  check_output_writable(path, overwrite);
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(format.c_str());
+  if (!driver) throw Error("unknown output format '" + format + "' (see gdalinfo --formats)");
+  char** meta = driver->GetMetadata();
+  if (!CSLFetchBoolean(meta, GDAL_DCAP_CREATECOPY, FALSE) && !CSLFetchBoolean(meta, GDAL_DCAP_CREATE, FALSE)) {
+    throw Error("GDAL format '" + format + "' cannot write files");
+  }
+  CPLStringList opts;
+  if (format == "GTiff") {
+    opts.SetNameValue("TILED", "YES");
+    opts.SetNameValue("COMPRESS", "DEFLATE");
+    opts.SetNameValue("PREDICTOR", mem->GetRasterBand(1)->GetRasterDataType() == GDT_Float32 ? "3" : "2");
+    opts.SetNameValue("BIGTIFF", "IF_SAFER");
+  }
+  for (const auto& kv : creation_options) {
+    const auto eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0) throw Error("creation option '" + kv + "' is not KEY=VALUE");
+    opts.SetNameValue(kv.substr(0, eq).c_str(), kv.substr(eq + 1).c_str());
+  }
+  const std::string tmp = temporary_name(path);
+  CPLErrorReset();
+  GDALDataset* out = driver->CreateCopy(tmp.c_str(), mem, FALSE, opts.List(), nullptr, nullptr);
+  const bool ok = out != nullptr && CPLGetLastErrorType() < CE_Failure;
+  std::string why = ok ? "" : last_gdal_error();
+  if (out && GDALClose(out) != CE_None) why = last_gdal_error();
+  if (!why.empty() || !out) {
+    if (path_exists(tmp)) driver->Delete(tmp.c_str());
+    throw Error("cannot write '" + path + "': " + why);
+  }
+  if (path_exists(path)) {
+    // Remove the old dataset with its side files (.aux.xml ...) so nothing stale survives.
+    if (GDALDriver* old = GetGDALDriverManager()->GetDriverByName(format.c_str()); old && old->Delete(path.c_str()) != CE_None) {
+      VSIUnlink(path.c_str());
+    }
+  }
+  if (driver->Rename(path.c_str(), tmp.c_str()) != CE_None) {
+    driver->Delete(tmp.c_str());
+    throw Error("cannot move the finished output into place at '" + path + "': " + last_gdal_error());
+  }
+}
+
+DatasetPtr make_memory_dataset(int width, int height, int bands, GDALDataType type) {
+  GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
+  DatasetPtr ds(mem->Create("", width, height, bands, type, nullptr));
+  if (!ds) throw Error("out of memory for a " + std::to_string(width) + "x" + std::to_string(height) + " output");
+  return ds;
+}
+
+}  // namespace
+
+void write_bands(const std::string& path, int width, int height, const GeoReference& georef,
+                 const std::vector<OutputBand>& bands, const WriteOptions& options) {
+  init_gdal();
+  if (bands.empty()) throw Error("nothing to write to '" + path + "'");
+  DatasetPtr ds = make_memory_dataset(width, height, static_cast<int>(bands.size()), GDT_Float32);
+  if (georef.has_geotransform) {
+    double gt[6];
+    std::copy(georef.geotransform.begin(), georef.geotransform.end(), gt);
+    ds->SetGeoTransform(gt);
+  }
+  if (!georef.crs_wkt.empty()) ds->SetProjection(georef.crs_wkt.c_str());
+  for (const auto& [k, v] : options.metadata) ds->SetMetadataItem(k.c_str(), v.c_str());
+  std::vector<float> buffer(static_cast<std::size_t>(width) * height);
+  for (std::size_t b = 0; b < bands.size(); ++b) {
+    GDALRasterBand* band = ds->GetRasterBand(static_cast<int>(b) + 1);
+    const OutputBand& src = bands[b];
+    for (std::size_t i = 0; i < buffer.size(); ++i) buffer[i] = std::isnan(src.values[i]) ? options.nodata : src.values[i];
+    if (band->RasterIO(GF_Write, 0, 0, width, height, buffer.data(), width, height, GDT_Float32, 0, 0) != CE_None) {
+      throw Error("cannot fill band " + std::to_string(b + 1) + " of '" + path + "'");
+    }
+    band->SetNoDataValue(options.nodata);
+    band->SetDescription(src.description.c_str());
+    band->SetUnitType(src.unit.c_str());
+    for (const auto& [k, v] : src.metadata) band->SetMetadataItem(k.c_str(), v.c_str());
+  }
+  commit_dataset(ds.get(), path, options.format, options.creation_options, options.overwrite);
+}
+
+void write_preview_png(const std::string& path, int width, int height, const float* values, double lo, double hi,
+                       bool overwrite) {
+  init_gdal();
+  DatasetPtr ds = make_memory_dataset(width, height, 1, GDT_Byte);
+  std::vector<std::uint8_t> pixels(static_cast<std::size_t>(width) * height);
+  const double scale = hi > lo ? 255.0 / (hi - lo) : 0.0;
+  for (std::size_t i = 0; i < pixels.size(); ++i) {
+    const double v = values[i];
+    pixels[i] = std::isnan(v) ? 0 : static_cast<std::uint8_t>(std::clamp((v - lo) * scale, 0.0, 255.0) + 0.5);
+  }
+  if (ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, width, height, pixels.data(), width, height, GDT_Byte, 0, 0) !=
+      CE_None) {
+    throw Error("cannot build the preview '" + path + "'");
+  }
+  commit_dataset(ds.get(), path, "PNG", {}, overwrite);
+}
+
+}  // namespace skyview

@@ -1,0 +1,52 @@
+#include "command.h"
+
+#include <tbb/global_control.h>
+
+namespace skyview::cli {
+
+std::vector<Command>& commands() {
+  static std::vector<Command> list;
+  return list;
+}
+
+Registration::Registration(const char* name, const char* summary, Setup setup) {
+  commands().push_back({name, summary, setup});
+}
+
+namespace {
+std::string& stored_command_line() {
+  static std::string line;
+  return line;
+}
+}  // namespace
+
+const std::string& command_line() { return stored_command_line(); }
+
+void set_command_line(int argc, char** argv) {
+  std::string& line = stored_command_line();
+  line.clear();
+  for (int i = 0; i < argc; ++i) {
+    if (i) line += ' ';
+    line += argv[i];
+  }
+}
+
+void add_output_options(CLI::App& app, OutputOptions& o) {
+  app.add_option("--of", o.format, "Output format, a GDAL driver short name (-of)")->capture_default_str();
+  app.add_option("--co", o.creation_options, "Creation option KEY=VALUE, repeatable (-co); GTiff defaults: "
+                                              "TILED=YES COMPRESS=DEFLATE PREDICTOR=3");
+  app.add_flag("--overwrite", o.overwrite, "Replace an existing output");
+  app.add_flag("-q,--quiet", o.quiet, "No progress on stderr");
+  app.add_option("--threads", o.threads, "Worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+}
+
+ThreadLimit::ThreadLimit(int threads) {
+  if (threads > 0) {
+    control_ = std::make_shared<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                     static_cast<std::size_t>(threads));
+  }
+}
+
+ThreadLimit::~ThreadLimit() = default;
+
+}  // namespace skyview::cli

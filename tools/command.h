@@ -1,0 +1,51 @@
+#pragma once
+// Each tools/cmd_*.cpp registers one subcommand of the `skyview` executable with a static
+// Registration, so adding a command touches no shared file. A command's setup adds its
+// options to the CLI11 subcommand and returns the function that runs it after parsing.
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace skyview::cli {
+
+using Runner = std::function<int()>;
+using Setup = Runner (*)(CLI::App& app);
+
+struct Registration {
+  Registration(const char* name, const char* summary, Setup setup);
+};
+
+struct Command {
+  std::string name, summary;
+  Setup setup;
+};
+std::vector<Command>& commands();
+
+// The command line as typed, for output metadata.
+const std::string& command_line();
+void set_command_line(int argc, char** argv);
+
+// Options every raster-writing command shares, GDAL-style.
+struct OutputOptions {
+  std::string format = "GTiff";
+  std::vector<std::string> creation_options;
+  bool overwrite = false;
+  bool quiet = false;
+  int threads = 0;  // 0 = all cores
+};
+void add_output_options(CLI::App& app, OutputOptions& o);
+
+// Limits oneTBB to `threads` workers while alive (0 = no limit).
+class ThreadLimit {
+ public:
+  explicit ThreadLimit(int threads);
+  ~ThreadLimit();
+
+ private:
+  std::shared_ptr<void> control_;
+};
+
+}  // namespace skyview::cli

@@ -1,0 +1,66 @@
+// The `skyview` executable: parses GDAL-style options and dispatches to a subcommand.
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "command.h"
+#include "skyview/error.h"
+#include "skyview/raster_io.h"
+#include "skyview/version.h"
+
+namespace {
+
+// CLI11 reads "-of" as "-o f"; GDAL users type single-dash long options, so map them.
+std::vector<std::string> gdal_style_arguments(int argc, char** argv) {
+  static const char* long_single_dash[] = {"-of", "-co", "-te", "-tr", "-t_srs", "-ot", "-srcnodata", "-dstnodata"};
+  std::vector<std::string> args;
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    for (const char* name : long_single_dash) {
+      if (a == name) a = std::string("-") + name;
+    }
+    args.push_back(a);
+  }
+  return args;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace skyview;
+  cli::set_command_line(argc, argv);
+  CLI::App app{"skyview " + version() + ": horizon angles, sky-view factor and solar exposure from elevation rasters"};
+  app.set_version_flag("--version", "skyview " + version());
+  app.require_subcommand(1);
+  std::string active;
+  std::vector<std::pair<CLI::App*, cli::Runner>> runners;
+  for (const auto& cmd : cli::commands()) {
+    CLI::App* sub = app.add_subcommand(cmd.name, cmd.summary);
+    runners.emplace_back(sub, cmd.setup(*sub));
+  }
+  std::vector<std::string> args = gdal_style_arguments(argc, argv);
+  std::reverse(args.begin(), args.end());  // CLI11 parses a reversed vector
+  try {
+    app.parse(args);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  init_gdal();
+  for (auto& [sub, run] : runners) {
+    if (!sub->parsed()) continue;
+    try {
+      return run();
+    } catch (const Error& e) {
+      std::fprintf(stderr, "skyview %s: error: %s\n", sub->get_name().c_str(), e.what());
+      return 1;
+    } catch (const std::bad_alloc&) {
+      std::fprintf(stderr, "skyview %s: error: out of memory\n", sub->get_name().c_str());
+      return 1;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "skyview %s: error: %s\n", sub->get_name().c_str(), e.what());
+      return 1;
+    }
+  }
+  return 1;
+}
