@@ -182,7 +182,10 @@ void commit_dataset(GDALDataset* mem, const std::string& path, const std::string
   GDALDataset* out = driver->CreateCopy(tmp.c_str(), mem, FALSE, opts.List(), nullptr, nullptr);
   const bool ok = out != nullptr && CPLGetLastErrorType() < CE_Failure;
   std::string why = ok ? "" : last_gdal_error();
-  if (out && GDALClose(out) != CE_None) why = last_gdal_error();
+  if (out) {
+    GDALClose(out);  // flushes; GDAL 3.6 reports failures only through the error state
+    if (why.empty() && CPLGetLastErrorType() >= CE_Failure) why = last_gdal_error();
+  }
   if (!why.empty() || !out) {
     if (path_exists(tmp)) driver->Delete(tmp.c_str());
     throw Error("cannot write '" + path + "': " + why);
@@ -234,6 +237,12 @@ void write_bands(const std::string& path, int width, int height, const GeoRefere
     for (const auto& [k, v] : src.metadata) band->SetMetadataItem(k.c_str(), v.c_str());
   }
   commit_dataset(ds.get(), path, options.format, options.creation_options, options.overwrite);
+}
+
+void write_terrain(const std::string& path, const Terrain& t, const WriteOptions& options) {
+  std::vector<float> z(t.heights.size());
+  for (std::size_t i = 0; i < z.size(); ++i) z[i] = static_cast<float>(t.base_height + t.heights.values()[i]);
+  write_bands(path, t.width(), t.height(), t.georef, {{"height", "metre", z.data(), {}}}, options);
 }
 
 void write_preview_png(const std::string& path, int width, int height, const float* values, double lo, double hi,

@@ -52,6 +52,9 @@ struct WriteOptions {
 void write_bands(const std::string& path, int width, int height, const GeoReference& georef,
                  const std::vector<OutputBand>& bands, const WriteOptions& options);
 
+// Writes absolute heights (base + relative) as one float32 band named "height" in metres.
+void write_terrain(const std::string& path, const Terrain& terrain, const WriteOptions& options);
+
 // Writes a greyscale 8-bit PNG of `values` scaled linearly from [lo, hi] to [0, 255]; nodata black.
 void write_preview_png(const std::string& path, int width, int height, const float* values, double lo,
                        double hi, bool overwrite);

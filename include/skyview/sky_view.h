@@ -1,0 +1,42 @@
+#pragma once
+// Sky-view quantities from per-direction horizon angles. Each sector k of width Δ = 2π/N
+// around azimuth φ_k holds a constant horizon h_k, and every quantity is integrated exactly
+// over each sector (formulas and peer-tool definitions in docs/sky_view.md):
+//   svf            = 1 - (1/N) Σ sin²(max(h_k, 0))              cosine-weighted, horizontal surface
+//   sky_visibility = 1 - (1/N) Σ sin(max(h_k, 0))               solid-angle fraction (paper's Eq. 5)
+//   svf_surface    = Σ [cosβ cos²H_k Δ/2π + sinβ cos(φ_k-A) sin(Δ/2) (π/2 - H_k - sinH_k cosH_k)/π]
+//                    with H_k = max(h_k, t_k), t_k the surface plane's own horizon
+//   openness_positive = mean(90° - h_k), openness_negative = mean(90° + lowest angle_k)  (Yokoyama 2002)
+#include <string>
+#include <vector>
+
+#include "skyview/grid.h"
+#include "skyview/horizon_engine.h"
+
+namespace skyview {
+
+double svf_horizontal(const float* horizons, int n);
+double sky_visibility(const float* horizons, int n);
+// slope β (radians) and aspect A (azimuth of steepest descent, radians); `rotation` offsets φ_k.
+double svf_tilted(const float* horizons, int n, double rotation, double slope, double aspect);
+
+// Slope and downslope azimuth of a cell by Horn's method on true ground distances; nodata or
+// missing neighbours take the centre cell's height.
+void horn_slope_aspect(const Terrain& terrain, int col, int row, double& slope, double& aspect);
+
+enum class EdgeMode { open, nodata };
+
+struct SkyViewProducts {
+  Grid<float> svf, svf_surface, sky_visibility, openness_positive, openness_negative;
+  std::int64_t edge_cells = 0;  // cells whose search circle leaves the raster
+};
+
+// True where the ground circle of `radius` metres around the cell leaves the full raster.
+bool search_circle_leaves_raster(const Terrain& terrain, int col, int row, double radius);
+
+// Products for the cells of `window`; `field` must come from that window. Openness bands are
+// NaN when the field has no lower horizons.
+SkyViewProducts sky_view_products(const Terrain& terrain, const Window& window, const HorizonField& field,
+                                  double radius, EdgeMode edge);
+
+}  // namespace skyview

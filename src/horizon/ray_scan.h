@@ -1,0 +1,128 @@
+#pragma once
+// The mechanism the sampled and march methods share: from every cell, walk straight out
+// along each azimuth and keep the steepest (and, on request, the shallowest) slope to the
+// terrain. The methods differ only in where along the ray they look (a Placement policy).
+//
+// Early termination: once the ray is at distance d, no farther terrain can rise above
+// (z_max - z0 - c d^2) / d, so the walk stops as soon as that bound cannot beat the slope
+// already found. The bound only skips samples that cannot change the result, so results are
+// bit-identical with and without it.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "height_sampler.h"
+#include "skyview/horizon_engine.h"
+
+namespace skyview::detail {
+
+inline std::uint64_t splitmix64(std::uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+// A uniform number in [0, 1) that depends only on the cell's place in the full raster and the
+// seed, so tiles of a raster get the same rotations as a single run.
+inline double cell_random(std::uint64_t global_id, std::uint64_t seed) {
+  return static_cast<double>(splitmix64(global_id ^ splitmix64(seed)) >> 11) * 0x1.0p-53;
+}
+
+struct ScanSettings {
+  int directions = 16;
+  bool lower = false;
+  bool early_exit = true;
+  bool rotate = false;  // per-cell random rotation of the direction set
+  std::uint64_t seed = 0;
+  double curvature = 0.0;  // c in drop = c d^2
+  double max_distance = std::numeric_limits<double>::infinity();
+};
+
+// Placement must provide
+//   template <class Visit> void walk(double col_per_m, double row_per_m, Visit&& visit) const;
+// calling visit(distance_m) for increasing distances until visit returns false.
+template <class Placement>
+void scan_rays(const Terrain& terrain, const Window& window, HorizonField& out, ProgressCounter& progress,
+               const ScanSettings& s, const Placement& placement) {
+  out.resize(window.cols, window.rows, s.directions, s.lower);
+  if (s.rotate) out.rotation.assign(static_cast<std::size_t>(window.cols) * window.rows, 0.0f);
+  const HeightSampler sampler(terrain);
+  double zmax = -std::numeric_limits<double>::infinity(), zmin = -zmax;
+  for (float z : terrain.heights.values()) {
+    if (!std::isnan(z)) {
+      zmax = std::max<double>(zmax, z);
+      zmin = std::min<double>(zmin, z);
+    }
+  }
+  const double sector = 2.0 * M_PI / s.directions;
+  std::vector<double> sin_k(s.directions), cos_k(s.directions);
+  for (int k = 0; k < s.directions; ++k) {
+    sin_k[k] = std::sin(sector_azimuth(k, s.directions));
+    cos_k[k] = std::cos(sector_azimuth(k, s.directions));
+  }
+  const double c = s.curvature;
+  const bool early = s.early_exit;
+
+  tbb::parallel_for(tbb::blocked_range<int>(0, window.rows), [&](const tbb::blocked_range<int>& range) {
+    for (int wr = range.begin(); wr != range.end(); ++wr) {
+      const int row = window.row0 + wr;
+      for (int wc = 0; wc < window.cols; ++wc) {
+        const int col = window.col0 + wc;
+        const std::size_t cell = out.cell(wc, wr);
+        if (!terrain.valid(col, row)) continue;
+        const double z0 = terrain.heights(col, row);
+        const double above = zmax - z0;  // >= 0
+        const double below = zmin - z0;  // <= 0
+        double rot = 0.0;
+        if (s.rotate) {
+          rot = (cell_random(terrain.global_id(col, row), s.seed) - 0.5) * sector;
+          out.rotation[cell] = static_cast<float>(rot);
+        }
+        const double sr = std::sin(rot), cr = std::cos(rot);
+        // Inverse Jacobian: metres east/north -> pixel columns/rows.
+        const Jacobian j = terrain.frame.at(col + terrain.origin_col, row + terrain.origin_row);
+        const double det = j.a * j.d - j.b * j.c;
+        const double ie_c = j.d / det, in_c = -j.b / det, ie_r = -j.c / det, in_r = j.a / det;
+        float* up = out.upper_of(cell);
+        float* lo = s.lower ? out.lower_of(cell) : nullptr;
+        for (int k = 0; k < s.directions; ++k) {
+          const double east = sin_k[k] * cr + cos_k[k] * sr;  // sin(az + rot)
+          const double north = cos_k[k] * cr - sin_k[k] * sr;  // cos(az + rot)
+          const double pc = ie_c * east + in_c * north, pr = ie_r * east + in_r * north;
+          double max_t = -std::numeric_limits<double>::infinity();
+          double min_t = std::numeric_limits<double>::infinity();
+          placement.walk(pc, pr, [&](double d) {
+            const double x = col + pc * d, y = row + pr * d;
+            if (!sampler.inside(x, y)) return false;
+            const double z = sampler.at(x, y);
+            if (std::isnan(z)) return true;
+            const double inv_d = 1.0 / d;
+            const double t = (z - z0 - c * d * d) * inv_d;
+            max_t = std::max(max_t, t);
+            min_t = std::min(min_t, t);
+            if (early) {
+              const double bound_hi = (above - c * d * d) * inv_d;  // decreasing in d since above >= 0
+              if (bound_hi <= max_t) {
+                if (!lo) return false;
+                const double bound_lo = below * inv_d - c * s.max_distance;
+                if (bound_lo >= min_t) return false;
+              }
+            }
+            return true;
+          });
+          up[k] = std::isinf(max_t) ? 0.0f : static_cast<float>(std::atan(max_t));
+          if (lo) lo[k] = std::isinf(min_t) ? 0.0f : static_cast<float>(std::atan(min_t));
+        }
+      }
+      progress.advance(window.cols);
+    }
+  });
+}
+
+}  // namespace skyview::detail

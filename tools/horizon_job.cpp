@@ -1,0 +1,72 @@
+#include "horizon_job.h"
+
+#include <cstdio>
+#include <sstream>
+
+#include "skyview/error.h"
+#include "skyview/version.h"
+
+namespace skyview::cli {
+
+void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
+  app.add_option("input", o.input, "Input elevation raster (any GDAL format)")->required();
+  app.add_option("output", o.output, "Output raster")->required();
+  app.add_option("-b,--band", o.band, "Input band")->capture_default_str();
+  app.add_option("--z-scale", o.z_scale, "Vertical unit factor to metres (0.3048 for feet)")->capture_default_str();
+  app.add_option("--method", o.method, "Horizon method: sampled, march")->capture_default_str();
+  app.add_option("--directions", o.params.directions, "Number of azimuth directions")->capture_default_str();
+  app.add_option("--samples", o.params.samples, "Samples per direction (sampled)")->capture_default_str();
+  app.add_option("--radius", o.params.radius,
+                 "Search radius in metres (default 500 for sampled and march)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--seed", o.params.seed, "Seed of the per-cell rotation (sampled)")->capture_default_str();
+  app.add_option("--edge", o.edge,
+                 "open: terrain beyond the raster does not occlude; nodata: cells whose search circle leaves the "
+                 "raster get nodata")
+      ->check(CLI::IsMember({"open", "nodata"}))
+      ->capture_default_str();
+  app.add_option("--curvature", o.params.curvature, "Earth curvature: auto, on, off")
+      ->check(CLI::IsMember({"auto", "on", "off"}))
+      ->capture_default_str();
+  app.add_option("--refraction", o.params.refraction, "Refraction coefficient with curvature")->capture_default_str();
+  app.add_flag("!--no-early-exit", o.params.early_exit, "Disable the max-height early termination (same results)");
+  add_output_options(app, o.out);
+}
+
+HorizonJob run_horizon_job(const HorizonJobOptions& o, const std::string& command) {
+  check_output_writable(o.output, o.out.overwrite);
+  HorizonJob job;
+  job.edge = o.edge == "nodata" ? EdgeMode::nodata : EdgeMode::open;
+  job.engine = make_horizon_engine(o.method, o.params);
+  ReadOptions ro;
+  ro.band = o.band;
+  ro.z_scale = o.z_scale;
+  ReadReport report;
+  job.terrain = read_terrain(o.input, ro, &report);
+  if (report.undeclared_nan_cells > 0 && !o.out.quiet) {
+    std::fprintf(stderr, "Warning: %lld NaN cells in '%s' are not the declared nodata value; treated as nodata\n",
+                 static_cast<long long>(report.undeclared_nan_cells), o.input.c_str());
+  }
+  ProgressCounter progress;
+  progress.set_total(static_cast<std::uint64_t>(job.terrain.width()) * job.terrain.height());
+  {
+    ProgressReporter reporter(progress, o.out.quiet);
+    job.engine->compute(job.terrain, Window::whole(job.terrain), job.field, progress);
+  }
+  auto& m = job.metadata;
+  m["SKYVIEW_VERSION"] = version();
+  m["SKYVIEW_COMMAND"] = command_line();
+  m["SKYVIEW_PRODUCT"] = command;
+  m["SOURCE"] = o.input;
+  m["SOURCE_BAND"] = std::to_string(o.band);
+  m["Z_SCALE"] = std::to_string(o.z_scale);
+  m["GROUND_FRAME"] = job.terrain.frame.description();
+  m["CITATION"] = std::string(job.engine->citation());
+  for (const auto& [k, v] : job.engine->describe()) m[k] = v;
+  m["EDGE_MODE"] = o.edge;
+  m["NODATA_POLICY"] = "nodata cells give nodata; nodata inside a search path does not occlude";
+  m["ANGLE_CONVENTION"] = "elevation above the horizontal; azimuth clockwise from true north";
+  return job;
+}
+
+}  // namespace skyview::cli
