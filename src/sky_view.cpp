@@ -37,7 +37,8 @@ double svf_tilted(const float* h, int n, double rotation, double slope, double a
     const double rel = sector_azimuth(k, n) + rotation - aspect;
     const double cos_rel = std::cos(rel);
     const double plane = std::atan(-tb * cos_rel);  // the surface's own horizon in this direction
-    const double H = std::max(static_cast<double>(h[k]), plane);
+    // Sky is above the horizontal, above the terrain's horizon and above the surface's plane.
+    const double H = std::max({static_cast<double>(h[k]), plane, 0.0});
     const double sH = std::sin(H), cH = std::cos(H);
     sum += cb * cH * cH * delta / (2.0 * kPi) + sb * cos_rel * half * (0.5 * kPi - H - sH * cH) / kPi;
   }

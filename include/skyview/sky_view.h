@@ -5,7 +5,7 @@
 //   svf            = 1 - (1/N) Σ sin²(max(h_k, 0))              cosine-weighted, horizontal surface
 //   sky_visibility = 1 - (1/N) Σ sin(max(h_k, 0))               solid-angle fraction (paper's Eq. 5)
 //   svf_surface    = Σ [cosβ cos²H_k Δ/2π + sinβ cos(φ_k-A) sin(Δ/2) (π/2 - H_k - sinH_k cosH_k)/π]
-//                    with H_k = max(h_k, t_k), t_k the surface plane's own horizon
+//                    with H_k = max(h_k, t_k, 0), t_k the surface plane's own horizon
 //   openness_positive = mean(90° - h_k), openness_negative = mean(90° + lowest angle_k)  (Yokoyama 2002)
 #include <string>
 #include <vector>

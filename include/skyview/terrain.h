@@ -38,4 +38,12 @@ struct Window {
   std::int64_t cells() const { return static_cast<std::int64_t>(cols) * rows; }
 };
 
+// Cells of halo a window needs so that every sample within `radius` metres lies in the buffer.
+int halo_cells(const Terrain& terrain, double radius);
+
+// A copy of `window` grown by `halo` cells (clipped to the buffer), placed in the full raster
+// so that horizons computed on it equal those of the whole raster for the window's cells.
+// `inner` receives the window's position inside the returned buffer.
+Terrain crop_terrain(const Terrain& terrain, const Window& window, int halo, Window& inner);
+
 }  // namespace skyview

@@ -1,0 +1,123 @@
+// Properties every method must keep: tiles equal a whole run, early exit changes nothing,
+// nodata never occludes, sampled agrees with march on a city.
+#include "test_support.h"
+
+using namespace skyview;
+using namespace skyview::test;
+
+namespace {
+
+Terrain small_city() {
+  return rasterize(synthetic_city(3), 161, 141, local_grid(161, 141, 1.0));
+}
+
+HorizonField run(const Terrain& t, const Window& w, const std::string& method, HorizonParams p) {
+  HorizonField f;
+  ProgressCounter progress;
+  make_horizon_engine(method, p)->compute(t, w, f, progress);
+  return f;
+}
+
+class EngineProperty : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(EngineProperty, TileWithHaloEqualsWholeRaster) {
+  const Terrain t = small_city();
+  HorizonParams p;
+  p.radius = 40.0;
+  p.lower = true;
+  const HorizonField whole = run(t, Window::whole(t), GetParam(), p);
+  const Window tile{60, 50, 37, 29};
+  Window inner;
+  const Terrain part = crop_terrain(t, tile, halo_cells(t, p.radius), inner);
+  ASSERT_LT(part.width(), t.width());
+  const HorizonField f = run(part, inner, GetParam(), p);
+  for (int r = 0; r < tile.rows; ++r) {
+    for (int c = 0; c < tile.cols; ++c) {
+      for (int k = 0; k < p.directions; ++k) {
+        ASSERT_EQ(f.upper_of(f.cell(c, r))[k], whole.upper_of(whole.cell(tile.col0 + c, tile.row0 + r))[k]);
+        ASSERT_EQ(f.lower_of(f.cell(c, r))[k], whole.lower_of(whole.cell(tile.col0 + c, tile.row0 + r))[k]);
+      }
+    }
+  }
+}
+
+TEST_P(EngineProperty, EarlyExitGivesBitIdenticalResults) {
+  const Terrain t = small_city();
+  HorizonParams p;
+  p.radius = 200.0;
+  p.lower = true;
+  const HorizonField fast = run(t, Window::whole(t), GetParam(), p);
+  p.early_exit = false;
+  const HorizonField slow = run(t, Window::whole(t), GetParam(), p);
+  ASSERT_EQ(fast.upper.size(), slow.upper.size());
+  for (std::size_t i = 0; i < fast.upper.size(); ++i) {
+    ASSERT_EQ(fast.upper[i], slow.upper[i]) << i;
+    ASSERT_EQ(fast.lower[i], slow.lower[i]) << i;
+  }
+}
+
+TEST_P(EngineProperty, NodataCellsGiveNodataAndNeverOcclude) {
+  // A wall of nodata next to a cell must not change its horizon in that direction.
+  Terrain t = rasterize([](double, double) { return 0.0; }, 41, 41, local_grid(41, 41, 1.0));
+  for (int r = 0; r < 41; ++r) t.heights(25, r) = std::numeric_limits<float>::quiet_NaN();
+  HorizonParams p;
+  p.radius = 15.0;
+  const HorizonField f = run(t, Window::whole(t), GetParam(), p);
+  EXPECT_TRUE(std::isnan(f.upper_of(f.cell(25, 20))[0]));
+  for (int k = 0; k < p.directions; ++k) EXPECT_EQ(f.upper_of(f.cell(20, 20))[k], 0.0f);
+  const SkyViewProducts s = sky_view_products(t, Window::whole(t), f, p.radius, EdgeMode::open);
+  EXPECT_TRUE(std::isnan(s.svf(25, 20)));
+  EXPECT_DOUBLE_EQ(s.svf(20, 20), 1.0);
+}
+
+TEST_P(EngineProperty, EdgeModeNodataBlanksCellsWhoseCircleLeavesTheRaster) {
+  const Terrain t = small_city();
+  HorizonParams p;
+  p.radius = 30.0;
+  const HorizonField f = run(t, Window::whole(t), GetParam(), p);
+  const SkyViewProducts s = sky_view_products(t, Window::whole(t), f, p.radius, EdgeMode::nodata);
+  EXPECT_TRUE(std::isnan(s.svf(29, 70)));
+  EXPECT_FALSE(std::isnan(s.svf(31, 70)));
+  EXPECT_TRUE(std::isnan(s.svf(80, 111)));
+  EXPECT_FALSE(std::isnan(s.svf(80, 110)));
+  EXPECT_EQ(s.edge_cells, 161ll * 141 - (161 - 60) * (141 - 60));
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, EngineProperty, ::testing::Values("march", "sampled"));
+
+TEST(SampledMethod, AgreesWithMarchOnACityWithinItsSamplingError) {
+  const Terrain t = small_city();
+  HorizonParams p;
+  p.radius = 100.0;
+  p.directions = 32;
+  p.samples = 64;
+  const HorizonField m = run(t, Window::whole(t), "march", p);
+  const HorizonField s = run(t, Window::whole(t), "sampled", p);
+  const auto pm = sky_view_products(t, Window::whole(t), m, p.radius, EdgeMode::open);
+  const auto ps = sky_view_products(t, Window::whole(t), s, p.radius, EdgeMode::open);
+  double sum = 0.0, bias = 0.0;
+  for (std::size_t i = 0; i < pm.svf.size(); ++i) {
+    const double d = ps.svf.values()[i] - pm.svf.values()[i];
+    sum += d * d;
+    bias += d;
+  }
+  const double rmse = std::sqrt(sum / pm.svf.size());
+  bias /= pm.svf.size();
+  EXPECT_LT(rmse, 0.05);
+  EXPECT_GT(bias, 0.0) << "sampling can only miss occluders, so sampled svf is biased high";
+  EXPECT_LT(bias, 0.03);
+}
+
+TEST(SampledMethod, RotationDependsOnSeedOnly) {
+  const Terrain t = small_city();
+  HorizonParams p;
+  p.seed = 7;
+  const HorizonField a = run(t, Window::whole(t), "sampled", p);
+  const HorizonField b = run(t, Window::whole(t), "sampled", p);
+  EXPECT_EQ(a.upper, b.upper);
+  p.seed = 8;
+  const HorizonField c = run(t, Window::whole(t), "sampled", p);
+  EXPECT_NE(a.rotation, c.rotation);
+}
+
+}  // namespace

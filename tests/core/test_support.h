@@ -1,0 +1,56 @@
+#pragma once
+// Helpers shared by the core tests: analytic terrains, one-cell horizon runs, temp folders.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "skyview/horizon_engine.h"
+#include "skyview/raster_io.h"
+#include "skyview/sky_view.h"
+#include "skyview/synthetic.h"
+
+#include <cpl_conv.h>
+#include <ogr_spatialref.h>
+
+namespace skyview::test {
+
+constexpr double kDeg = M_PI / 180.0;
+
+struct CellResult {
+  double svf, svf_surface, sky_visibility, openness_positive, openness_negative;
+};
+
+// Runs `method` for the single cell (col, row) and returns its products.
+inline CellResult run_cell(const Terrain& t, int col, int row, const std::string& method, HorizonParams p) {
+  p.lower = true;
+  auto engine = make_horizon_engine(method, p);
+  HorizonField field;
+  ProgressCounter progress;
+  const Window w{col, row, 1, 1};
+  engine->compute(t, w, field, progress);
+  const SkyViewProducts out = sky_view_products(t, w, field, engine->radius(), EdgeMode::open);
+  return {out.svf(0, 0), out.svf_surface(0, 0), out.sky_visibility(0, 0), out.openness_positive(0, 0),
+          out.openness_negative(0, 0)};
+}
+
+inline std::string temp_dir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("skyview-test-" + name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+
+inline std::string wkt_of(const char* user_crs) {
+  init_gdal();
+  OGRSpatialReference srs;
+  srs.SetFromUserInput(user_crs);
+  char* wkt = nullptr;
+  srs.exportToWkt(&wkt);
+  std::string s = wkt;
+  CPLFree(wkt);
+  return s;
+}
+
+}  // namespace skyview::test
