@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages skyview builds and tests with (run as root).
+set -euo pipefail
+packages=(
+  cmake g++ make pkg-config
+  libgdal-dev gdal-bin libgeographiclib-dev libopencv-dev libpcl-dev libembree-dev libtbb-dev libgeos-dev
+  libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev
+  clang clang-format
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -q
+  apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi

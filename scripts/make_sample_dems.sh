@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# Regenerates the synthetic rasters in sample_dems/ with skyview's own generator.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+exe=${SKYVIEW:-./build/skyview}
+"$exe" synth city sample_dems/city.tif --size 401 --cell 1 --crs EPSG:32633 --overwrite -q
+"$exe" synth mountains sample_dems/mountains.tif --size 601 --cell 10 --crs EPSG:32633 --overwrite -q

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Builds skyview and runs the whole test suite: a Release build, then the same tests under
+# AddressSanitizer and UBSan, then a short fuzzing run of the LAS reader when available.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+jobs=$(nproc)
+
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build -j"$jobs"
+(cd build && ctest --output-on-failure -j"$jobs")
+
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKYVIEW_SANITIZE=ON -DSKYVIEW_BUILD_BENCH=OFF >/dev/null
+cmake --build build-asan -j"$jobs"
+(cd build-asan && ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j"$jobs")
+
+if [ -f scripts/fuzz.sh ]; then
+  bash scripts/fuzz.sh
+fi

@@ -1,0 +1,146 @@
+// Bad input to the executable: one clear line on stderr and a non-zero exit, never a crash.
+#include <cstdio>
+#include <fstream>
+#include <sys/wait.h>
+
+#include <gdal_priv.h>
+
+#include "test_support.h"
+
+using namespace skyview;
+using namespace skyview::test;
+
+namespace {
+
+struct RunResult {
+  int exit_code;
+  std::string err;
+};
+
+RunResult run_skyview(const std::string& args, const std::string& dir) {
+  const std::string err_file = dir + "/stderr.txt";
+  const std::string cmd = std::string(SKYVIEW_EXE) + " " + args + " -q 2>" + err_file + " >/dev/null";
+  const int status = std::system(cmd.c_str());
+  std::ifstream in(err_file);
+  std::string all((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), all};
+}
+
+void expect_one_line_error(const RunResult& r, const std::string& fragment) {
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("error: "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(fragment), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+class CliErrors : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir = temp_dir("cli");
+    good = dir + "/good.tif";
+    write_terrain(good, rasterize(circular_pit(5, 5), 21, 21, local_grid(21, 21, 1.0)), {});
+  }
+  std::string dir, good;
+};
+
+TEST_F(CliErrors, MissingFile) { expect_one_line_error(run_skyview("svf " + dir + "/nope.tif " + dir + "/o.tif", dir), "no such file"); }
+
+TEST_F(CliErrors, NotARaster) {
+  std::ofstream(dir + "/text.tif") << "this is not a raster\n";
+  expect_one_line_error(run_skyview("svf " + dir + "/text.tif " + dir + "/o.tif", dir), "as a raster");
+}
+
+TEST_F(CliErrors, SingleCellRaster) {
+  write_terrain(dir + "/one.tif", rasterize(circular_pit(5, 5), 1, 1, local_grid(1, 1, 1.0)), {});
+  expect_one_line_error(run_skyview("svf " + dir + "/one.tif " + dir + "/o.tif", dir), "single cell");
+}
+
+TEST_F(CliErrors, AllNodataRaster) {
+  Terrain t = rasterize(circular_pit(5, 5), 5, 5, local_grid(5, 5, 1.0));
+  for (float& v : t.heights.values()) v = std::numeric_limits<float>::quiet_NaN();
+  write_terrain(dir + "/nodata.tif", t, {});
+  expect_one_line_error(run_skyview("svf " + dir + "/nodata.tif " + dir + "/o.tif", dir), "only nodata");
+}
+
+TEST_F(CliErrors, InfiniteHeights) {
+  Terrain t = rasterize(circular_pit(5, 5), 5, 5, local_grid(5, 5, 1.0));
+  t.heights(2, 3) = std::numeric_limits<float>::infinity();
+  WriteOptions wo;
+  wo.nodata = -32768.0f;
+  write_terrain(dir + "/inf.tif", t, wo);
+  expect_one_line_error(run_skyview("svf " + dir + "/inf.tif " + dir + "/o.tif", dir), "infinite height at cell (2, 3)");
+}
+
+TEST_F(CliErrors, UndeclaredNanIsNodataWithAWarning) {
+  Terrain t = rasterize(circular_pit(5, 5), 9, 9, local_grid(9, 9, 1.0));
+  t.heights(4, 4) = std::numeric_limits<float>::quiet_NaN();
+  const std::string path = dir + "/nan.tif";
+  write_terrain(path, t, {});
+  const RunResult r = run_skyview("svf " + path + " " + dir + "/o.tif", dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
+TEST_F(CliErrors, ZeroOrNegativeRadius) {
+  for (const char* radius : {"0", "-5"}) {
+    const RunResult r = run_skyview("svf " + good + " " + dir + "/o.tif --radius " + radius, dir);
+    EXPECT_NE(r.exit_code, 0) << radius;
+    EXPECT_NE(r.err.find("radius"), std::string::npos) << r.err;
+  }
+}
+
+TEST_F(CliErrors, ExistingOutputIsKeptWithoutOverwrite) {
+  const std::string out = dir + "/o.tif";
+  ASSERT_EQ(run_skyview("svf " + good + " " + out, dir).exit_code, 0);
+  const auto before = std::filesystem::last_write_time(out);
+  expect_one_line_error(run_skyview("svf " + good + " " + out, dir), "--overwrite");
+  EXPECT_EQ(std::filesystem::last_write_time(out), before);
+  EXPECT_EQ(run_skyview("svf " + good + " " + out + " --overwrite", dir).exit_code, 0);
+  // No temporary files are left behind.
+  int files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) files += e.path().filename().string().find("skyview-tmp") != std::string::npos;
+  EXPECT_EQ(files, 0);
+}
+
+TEST_F(CliErrors, UnknownMethodBandAndFormat) {
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --method nope", dir), "unknown method");
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif -b 3", dir), "band 3 does not exist");
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif -of NOPE", dir), "unknown output format");
+}
+
+TEST_F(CliErrors, OutputCarriesBandsMetadataAndGeoreference) {
+  const std::string out = dir + "/svf.tif";
+  ASSERT_EQ(run_skyview("svf " + good + " " + out + " -co COMPRESS=LZW --directions 8 --method march", dir).exit_code, 0);
+  GDALDatasetUniquePtr ds(GDALDataset::Open(out.c_str(), GDAL_OF_RASTER));
+  ASSERT_TRUE(ds);
+  ASSERT_EQ(ds->GetRasterCount(), 5);
+  const char* names[] = {"svf", "svf_surface", "sky_visibility", "openness_positive", "openness_negative"};
+  for (int b = 0; b < 5; ++b) EXPECT_STREQ(ds->GetRasterBand(b + 1)->GetDescription(), names[b]);
+  EXPECT_STREQ(ds->GetRasterBand(4)->GetUnitType(), "degree");
+  EXPECT_STREQ(ds->GetMetadataItem("DIRECTIONS"), "8");
+  EXPECT_STREQ(ds->GetMetadataItem("METHOD"), "march");
+  EXPECT_STREQ(ds->GetMetadataItem("COMPRESSION", "IMAGE_STRUCTURE"), "LZW");
+  int has = 0;
+  EXPECT_EQ(ds->GetRasterBand(1)->GetNoDataValue(&has), -9999.0);
+  EXPECT_TRUE(has);
+  double gt[6];
+  ASSERT_EQ(ds->GetGeoTransform(gt), CE_None);
+  EXPECT_DOUBLE_EQ(gt[1], 1.0);
+  // The pit bottom centre, cos²(atan(5/5)) = 0.5 for a smooth rim; 1 m cells make the rim ragged.
+  float v = 0;
+  ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Read, 10, 10, 1, 1, &v, 1, 1, GDT_Float32, 0, 0), CE_None);
+  EXPECT_NEAR(v, 0.5, 0.05);
+}
+
+TEST_F(CliErrors, HorizonBandsNameTheirAzimuths) {
+  const std::string out = dir + "/h.tif";
+  ASSERT_EQ(run_skyview("horizon " + good + " " + out + " --directions 4 --method march", dir).exit_code, 0);
+  GDALDatasetUniquePtr ds(GDALDataset::Open(out.c_str(), GDAL_OF_RASTER));
+  ASSERT_EQ(ds->GetRasterCount(), 4);
+  EXPECT_STREQ(ds->GetRasterBand(2)->GetDescription(), "horizon_azimuth_90");
+  // Bottom of a pit of radius 5 and depth 5: the rim's elevation is about 45 degrees.
+  float v = 0;
+  ASSERT_EQ(ds->GetRasterBand(2)->RasterIO(GF_Read, 10, 10, 1, 1, &v, 1, 1, GDT_Float32, 0, 0), CE_None);
+  EXPECT_NEAR(v, 45.0, 3.0);
+}
+
+}  // namespace
