@@ -1,7 +1,7 @@
 #include "skyview/ground_frame.h"
 
-#include <GeographicLib/Geodesic.hpp>
 #include <ogr_spatialref.h>
+#include <GeographicLib/Geodesic.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -19,9 +19,7 @@ void Jacobian::pixel_step_for_azimuth(double azimuth, double& dcol, double& drow
   drow = (a * north - c * east) / det;
 }
 
-double Jacobian::metres(double dcol, double drow) const {
-  return std::hypot(a * dcol + b * drow, c * dcol + d * drow);
-}
+double Jacobian::metres(double dcol, double drow) const { return std::hypot(a * dcol + b * drow, c * dcol + d * drow); }
 
 double Jacobian::min_cell_size() const { return std::min(std::hypot(a, c), std::hypot(b, d)); }
 
@@ -60,8 +58,8 @@ GroundFrame::GroundFrame(const GeoReference& georef, int width, int height, int 
   if (srs.importFromWkt(georef.crs_wkt.c_str()) != OGRERR_NONE) throw Error("the raster's CRS cannot be parsed");
   srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   if (!srs.IsProjected() && !srs.IsGeographic()) {
-    throw Error("the raster's CRS is neither projected nor geographic (" + std::string(srs.GetName() ? srs.GetName() : "?") +
-                "); reproject it first");
+    throw Error("the raster's CRS is neither projected nor geographic (" +
+                std::string(srs.GetName() ? srs.GetName() : "?") + "); reproject it first");
   }
   OGRErr err = OGRERR_NONE;
   const double a = srs.GetSemiMajor(&err);
@@ -96,7 +94,8 @@ GroundFrame::GroundFrame(const GeoReference& georef, int width, int height, int 
       }
       for (int i = 0; i < 5; ++i) {
         if (!std::isfinite(y[i]) || std::abs(y[i]) > 90.0) {
-          throw Error("the raster extends beyond the poles (latitude " + std::to_string(y[i]) + "); check its geotransform");
+          throw Error("the raster extends beyond the poles (latitude " + std::to_string(y[i]) +
+                      "); check its geotransform");
         }
       }
       // Central differences of east/north displacement measured at the lattice point.

@@ -83,8 +83,8 @@ Terrain read_terrain(const std::string& path, const ReadOptions& options, ReadRe
     if (std::isnan(v)) {
       if (!nodata_is_nan) {
         if (!options.nan_is_nodata) {
-          throw Error("'" + path + "' holds NaN at cell (" + std::to_string(i % width) + ", " + std::to_string(i / width) +
-                      ") but its nodata value is not NaN");
+          throw Error("'" + path + "' holds NaN at cell (" + std::to_string(i % width) + ", " +
+                      std::to_string(i / width) + ") but its nodata value is not NaN");
         }
         ++rep.undeclared_nan_cells;
       }
@@ -192,7 +192,8 @@ void commit_dataset(GDALDataset* mem, const std::string& path, const std::string
   }
   if (path_exists(path)) {
     // Remove the old dataset with its side files (.aux.xml ...) so nothing stale survives.
-    if (GDALDriver* old = GetGDALDriverManager()->GetDriverByName(format.c_str()); old && old->Delete(path.c_str()) != CE_None) {
+    if (GDALDriver* old = GetGDALDriverManager()->GetDriverByName(format.c_str());
+        old && old->Delete(path.c_str()) != CE_None) {
       VSIUnlink(path.c_str());
     }
   }
@@ -227,7 +228,8 @@ void write_bands(const std::string& path, int width, int height, const GeoRefere
   for (std::size_t b = 0; b < bands.size(); ++b) {
     GDALRasterBand* band = ds->GetRasterBand(static_cast<int>(b) + 1);
     const OutputBand& src = bands[b];
-    for (std::size_t i = 0; i < buffer.size(); ++i) buffer[i] = std::isnan(src.values[i]) ? options.nodata : src.values[i];
+    for (std::size_t i = 0; i < buffer.size(); ++i)
+      buffer[i] = std::isnan(src.values[i]) ? options.nodata : src.values[i];
     if (band->RasterIO(GF_Write, 0, 0, width, height, buffer.data(), width, height, GDT_Float32, 0, 0) != CE_None) {
       throw Error("cannot fill band " + std::to_string(b + 1) + " of '" + path + "'");
     }

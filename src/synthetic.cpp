@@ -1,7 +1,7 @@
 #include "skyview/synthetic.h"
 
-#include <GeographicLib/LocalCartesian.hpp>
 #include <ogr_spatialref.h>
+#include <GeographicLib/LocalCartesian.hpp>
 
 #include <cmath>
 #include <memory>
@@ -43,9 +43,11 @@ Terrain rasterize(const HeightFunction& f, int width, int height, const GeoRefer
     geog->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
     std::unique_ptr<OGRCoordinateTransformation> ct(OGRCreateCoordinateTransformation(&srs, geog.get()));
     if (!ct || !ct->Transform(static_cast<int>(xs.size()), xs.data(), ys.data())) throw Error("cannot rasterise");
-    double cx = georef.x_of((width - 1) / 2.0, (height - 1) / 2.0), cy = georef.y_of((width - 1) / 2.0, (height - 1) / 2.0);
+    double cx = georef.x_of((width - 1) / 2.0, (height - 1) / 2.0),
+           cy = georef.y_of((width - 1) / 2.0, (height - 1) / 2.0);
     ct->Transform(1, &cx, &cy);
-    const GeographicLib::LocalCartesian local(cy, cx, 0.0, GeographicLib::Geocentric(srs.GetSemiMajor(), 1.0 / srs.GetInvFlattening()));
+    const GeographicLib::LocalCartesian local(
+        cy, cx, 0.0, GeographicLib::Geocentric(srs.GetSemiMajor(), 1.0 / srs.GetInvFlattening()));
     for (std::size_t i = 0; i < xs.size(); ++i) {
       double e, n, u;
       local.Forward(ys[i], xs[i], 0.0, e, n, u);
@@ -97,7 +99,8 @@ HeightFunction synthetic_city(std::uint64_t seed) {
       const double kind = u(rng);
       if (i == 0 && j == 0) continue;  // the plaza
       if (kind < 0.15) {
-        blocks.push_back({e0 + 0.3 * size, n0 + 0.3 * size, e0 + 0.7 * size, n0 + 0.7 * size, 60.0 + 60.0 * u(rng), false});
+        blocks.push_back(
+            {e0 + 0.3 * size, n0 + 0.3 * size, e0 + 0.7 * size, n0 + 0.7 * size, 60.0 + 60.0 * u(rng), false});
       } else if (kind < 0.45) {
         blocks.push_back({e0, n0, e0 + size, n0 + size, 12.0 + 15.0 * u(rng), true});
       } else {

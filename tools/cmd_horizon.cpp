@@ -20,9 +20,9 @@ Runner setup(CLI::App& app) {
     for (int r = 0; r < h; ++r) {
       for (int c = 0; c < w; ++c) {
         const std::size_t cell = job.field.cell(c, r);
-        const bool drop = !job.terrain.valid(c, r) ||
-                          (job.edge == EdgeMode::nodata &&
-                           search_circle_leaves_raster(job.terrain, c, r, job.engine->radius()));
+        const bool drop =
+            !job.terrain.valid(c, r) ||
+            (job.edge == EdgeMode::nodata && search_circle_leaves_raster(job.terrain, c, r, job.engine->radius()));
         for (int k = 0; k < n; ++k) {
           planes[k][cell] = drop ? std::numeric_limits<float>::quiet_NaN()
                                  : static_cast<float>(job.field.upper_of(cell)[k] * 180.0 / M_PI);

@@ -20,8 +20,8 @@ Runner setup(CLI::App& app) {
     HorizonJobOptions opts = *o;
     opts.params.lower = true;  // negative openness needs the lowest angles
     HorizonJob job = run_horizon_job(opts, "svf");
-    const SkyViewProducts p = sky_view_products(job.terrain, Window::whole(job.terrain), job.field,
-                                                job.engine->radius(), job.edge);
+    const SkyViewProducts p =
+        sky_view_products(job.terrain, Window::whole(job.terrain), job.field, job.engine->radius(), job.edge);
     job.metadata["EDGE_CELLS"] = std::to_string(p.edge_cells);
     if (p.edge_cells > 0) {
       job.metadata["EDGE_NOTE"] = std::to_string(p.edge_cells) + " cells have search circles leaving the raster; " +
@@ -36,13 +36,21 @@ Runner setup(CLI::App& app) {
     const int w = job.terrain.width(), h = job.terrain.height();
     write_bands(o->output, w, h, job.terrain.georef,
                 {{"svf", "1", p.svf.data(), {{"DEFINITION", "1 - mean sin^2(max(h,0)); cosine-weighted, horizontal"}}},
-                 {"svf_surface", "1", p.svf_surface.data(),
+                 {"svf_surface",
+                  "1",
+                  p.svf_surface.data(),
                   {{"DEFINITION", "view factor of the tilted cell surface (Horn normal) to the unobstructed sky"}}},
-                 {"sky_visibility", "1", p.sky_visibility.data(),
+                 {"sky_visibility",
+                  "1",
+                  p.sky_visibility.data(),
                   {{"DEFINITION", "1 - mean sin(max(h,0)); solid-angle fraction of the hemisphere"}}},
-                 {"openness_positive", "degree", p.openness_positive.data(),
+                 {"openness_positive",
+                  "degree",
+                  p.openness_positive.data(),
                   {{"DEFINITION", "mean zenith angle of the horizon (Yokoyama 2002)"}}},
-                 {"openness_negative", "degree", p.openness_negative.data(),
+                 {"openness_negative",
+                  "degree",
+                  p.openness_negative.data(),
                   {{"DEFINITION", "mean nadir angle of the lowest terrain (Yokoyama 2002)"}}}},
                 wo);
     if (!preview->empty()) write_preview_png(*preview, w, h, p.svf.data(), 0.0, 1.0, o->out.overwrite);

@@ -33,8 +33,9 @@ void set_command_line(int argc, char** argv) {
 
 void add_output_options(CLI::App& app, OutputOptions& o) {
   app.add_option("--of", o.format, "Output format, a GDAL driver short name (-of)")->capture_default_str();
-  app.add_option("--co", o.creation_options, "Creation option KEY=VALUE, repeatable (-co); GTiff defaults: "
-                                              "TILED=YES COMPRESS=DEFLATE PREDICTOR=3");
+  app.add_option("--co", o.creation_options,
+                 "Creation option KEY=VALUE, repeatable (-co); GTiff defaults: "
+                 "TILED=YES COMPRESS=DEFLATE PREDICTOR=3");
   app.add_flag("--overwrite", o.overwrite, "Replace an existing output");
   app.add_flag("-q,--quiet", o.quiet, "No progress on stderr");
   app.add_option("--threads", o.threads, "Worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);

@@ -15,13 +15,13 @@
 namespace skyview {
 
 struct HorizonParams {
-  int directions = 16;     // azimuth sectors, the first centred on north, clockwise
-  int samples = 16;        // samples per direction (sampled method)
-  double radius = 0.0;     // search radius in metres; 0 = method default (unlimited for sweep)
-  std::uint64_t seed = 0;  // per-cell rotation seed (sampled method)
-  bool lower = false;      // also the lowest elevation angle per direction (negative openness)
-  bool early_exit = true;  // max-height pyramid termination, results unchanged
-  int rays = 256;          // rays per cell for Monte-Carlo estimates (raycast)
+  int directions = 16;             // azimuth sectors, the first centred on north, clockwise
+  int samples = 16;                // samples per direction (sampled method)
+  double radius = 0.0;             // search radius in metres; 0 = method default (unlimited for sweep)
+  std::uint64_t seed = 0;          // per-cell rotation seed (sampled method)
+  bool lower = false;              // also the lowest elevation angle per direction (negative openness)
+  bool early_exit = true;          // max-height pyramid termination, results unchanged
+  int rays = 256;                  // rays per cell for Monte-Carlo estimates (raycast)
   double refraction = 0.13;        // refraction coefficient k when curvature is on
   std::string curvature = "auto";  // auto | on | off
 };
@@ -65,8 +65,6 @@ std::vector<std::string> horizon_method_names();
 std::unique_ptr<HorizonEngine> make_horizon_engine(std::string_view method, const HorizonParams& params);
 
 // Azimuth of sector k's centre (radians, clockwise from north).
-inline double sector_azimuth(int k, int directions) {
-  return 2.0 * 3.14159265358979323846 * k / directions;
-}
+inline double sector_azimuth(int k, int directions) { return 2.0 * 3.14159265358979323846 * k / directions; }
 
 }  // namespace skyview

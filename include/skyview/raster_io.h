@@ -56,8 +56,8 @@ void write_bands(const std::string& path, int width, int height, const GeoRefere
 void write_terrain(const std::string& path, const Terrain& terrain, const WriteOptions& options);
 
 // Writes a greyscale 8-bit PNG of `values` scaled linearly from [lo, hi] to [0, 255]; nodata black.
-void write_preview_png(const std::string& path, int width, int height, const float* values, double lo,
-                       double hi, bool overwrite);
+void write_preview_png(const std::string& path, int width, int height, const float* values, double lo, double hi,
+                       bool overwrite);
 
 // Refuses early (before any computation) when an output exists and !overwrite.
 void check_output_writable(const std::string& path, bool overwrite);

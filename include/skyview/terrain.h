@@ -14,10 +14,10 @@
 namespace skyview {
 
 struct Terrain {
-  Grid<float> heights;        // metres above `base_height`, NaN where nodata
-  double base_height = 0.0;   // metres
+  Grid<float> heights;       // metres above `base_height`, NaN where nodata
+  double base_height = 0.0;  // metres
   GroundFrame frame = GroundFrame::uniform(1.0);
-  GeoReference georef;        // of this buffer
+  GeoReference georef;                  // of this buffer
   int origin_col = 0, origin_row = 0;   // where this buffer starts in the full raster
   int full_width = 0, full_height = 0;  // size of the full raster
 

@@ -34,7 +34,8 @@ class MarchEngine final : public HorizonEngine {
     return "exhaustive line march over every cell crossing (cf. GRASS r.horizon, SAGA Sky View Factor)";
   }
   std::map<std::string, std::string> describe() const override {
-    return {{"METHOD", "march"}, {"DIRECTIONS", std::to_string(p_.directions)}, {"RADIUS_M", std::to_string(p_.radius)}};
+    return {
+        {"METHOD", "march"}, {"DIRECTIONS", std::to_string(p_.directions)}, {"RADIUS_M", std::to_string(p_.radius)}};
   }
   double radius() const override { return p_.radius; }
   void compute(const Terrain& terrain, const Window& window, HorizonField& out,

@@ -92,7 +92,7 @@ void scan_rays(const Terrain& terrain, const Window& window, HorizonField& out, 
         float* up = out.upper_of(cell);
         float* lo = s.lower ? out.lower_of(cell) : nullptr;
         for (int k = 0; k < s.directions; ++k) {
-          const double east = sin_k[k] * cr + cos_k[k] * sr;  // sin(az + rot)
+          const double east = sin_k[k] * cr + cos_k[k] * sr;   // sin(az + rot)
           const double north = cos_k[k] * cr - sin_k[k] * sr;  // cos(az + rot)
           const double pc = ie_c * east + in_c * north, pr = ie_r * east + in_r * north;
           double max_t = -std::numeric_limits<double>::infinity();

@@ -59,9 +59,11 @@ TEST_P(AnalyticCase, TiltedPlaneSurfaceSvfIsOnePlusCosOverTwo) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, AnalyticCase, ::testing::Values("march", "sampled"));
+INSTANTIATE_TEST_SUITE_P(Methods, AnalyticCase, ::testing::Values("march", "sampled", "sweep"));
 
-TEST(StreetCanyon, FloorCentreMatchesInfiniteCanyon) {
+class StreetCanyon : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(StreetCanyon, FloorCentreMatchesInfiniteCanyon) {
   // Infinite symmetric canyon of width W, height H: svf = cos(atan(2H/W)).
   for (double ratio : {0.5, 1.0, 2.0}) {
     const double w = 10.0, h = ratio * w, cell = 0.25;
@@ -70,10 +72,12 @@ TEST(StreetCanyon, FloorCentreMatchesInfiniteCanyon) {
     HorizonParams p;
     p.directions = 64;
     p.radius = 150.0;
-    const CellResult r = run_cell(t, cols / 2, rows / 2, "march", p);
+    const CellResult r = run_cell(t, cols / 2, rows / 2, GetParam(), p);
     EXPECT_NEAR(r.svf, std::cos(std::atan(2.0 * ratio)), 0.01) << "H/W " << ratio;
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Methods, StreetCanyon, ::testing::Values("march", "sweep"));
 
 TEST(GroundFrame, PitInUtmAndInDegreesAtLatitude60GivesTheSameValues) {
   const double r = 20.0, depth = 10.0, cell = 0.2;
@@ -117,7 +121,8 @@ TEST(SkyViewFormulas, TiltedSurfaceWithPlaneHorizonsConvergesToAnalytic) {
   const double beta = 40.0 * kDeg, aspect = 1.1;
   for (int n : {8, 32, 128}) {
     std::vector<float> h(n);
-    for (int k = 0; k < n; ++k) h[k] = static_cast<float>(std::atan(-std::tan(beta) * std::cos(sector_azimuth(k, n) - aspect)));
+    for (int k = 0; k < n; ++k)
+      h[k] = static_cast<float>(std::atan(-std::tan(beta) * std::cos(sector_azimuth(k, n) - aspect)));
     const double err = std::abs(svf_tilted(h.data(), n, 0.0, beta, aspect) - 0.5 * (1 + std::cos(beta)));
     EXPECT_LT(err, n == 8 ? 0.02 : (n == 32 ? 2e-3 : 2e-4)) << n << " sectors";
   }

@@ -1,7 +1,7 @@
 // Bad input to the executable: one clear line on stderr and a non-zero exit, never a crash.
+#include <sys/wait.h>
 #include <cstdio>
 #include <fstream>
-#include <sys/wait.h>
 
 #include <gdal_priv.h>
 
@@ -43,7 +43,9 @@ class CliErrors : public ::testing::Test {
   std::string dir, good;
 };
 
-TEST_F(CliErrors, MissingFile) { expect_one_line_error(run_skyview("svf " + dir + "/nope.tif " + dir + "/o.tif", dir), "no such file"); }
+TEST_F(CliErrors, MissingFile) {
+  expect_one_line_error(run_skyview("svf " + dir + "/nope.tif " + dir + "/o.tif", dir), "no such file");
+}
 
 TEST_F(CliErrors, NotARaster) {
   std::ofstream(dir + "/text.tif") << "this is not a raster\n";
@@ -68,7 +70,8 @@ TEST_F(CliErrors, InfiniteHeights) {
   WriteOptions wo;
   wo.nodata = -32768.0f;
   write_terrain(dir + "/inf.tif", t, wo);
-  expect_one_line_error(run_skyview("svf " + dir + "/inf.tif " + dir + "/o.tif", dir), "infinite height at cell (2, 3)");
+  expect_one_line_error(run_skyview("svf " + dir + "/inf.tif " + dir + "/o.tif", dir),
+                        "infinite height at cell (2, 3)");
 }
 
 TEST_F(CliErrors, UndeclaredNanIsNodataWithAWarning) {
@@ -97,7 +100,8 @@ TEST_F(CliErrors, ExistingOutputIsKeptWithoutOverwrite) {
   EXPECT_EQ(run_skyview("svf " + good + " " + out + " --overwrite", dir).exit_code, 0);
   // No temporary files are left behind.
   int files = 0;
-  for (const auto& e : std::filesystem::directory_iterator(dir)) files += e.path().filename().string().find("skyview-tmp") != std::string::npos;
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    files += e.path().filename().string().find("skyview-tmp") != std::string::npos;
   EXPECT_EQ(files, 0);
 }
 
@@ -109,7 +113,8 @@ TEST_F(CliErrors, UnknownMethodBandAndFormat) {
 
 TEST_F(CliErrors, OutputCarriesBandsMetadataAndGeoreference) {
   const std::string out = dir + "/svf.tif";
-  ASSERT_EQ(run_skyview("svf " + good + " " + out + " -co COMPRESS=LZW --directions 8 --method march", dir).exit_code, 0);
+  ASSERT_EQ(run_skyview("svf " + good + " " + out + " -co COMPRESS=LZW --directions 8 --method march", dir).exit_code,
+            0);
   GDALDatasetUniquePtr ds(GDALDataset::Open(out.c_str(), GDAL_OF_RASTER));
   ASSERT_TRUE(ds);
   ASSERT_EQ(ds->GetRasterCount(), 5);

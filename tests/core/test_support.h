@@ -25,6 +25,7 @@ struct CellResult {
 // Runs `method` for the single cell (col, row) and returns its products.
 inline CellResult run_cell(const Terrain& t, int col, int row, const std::string& method, HorizonParams p) {
   p.lower = true;
+  if (method == "sweep") p.radius = 0.0;  // exact over the whole raster
   auto engine = make_horizon_engine(method, p);
   HorizonField field;
   ProgressCounter progress;
