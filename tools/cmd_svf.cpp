@@ -34,8 +34,7 @@ Runner setup(CLI::App& app) {
     wo.overwrite = o->out.overwrite;
     wo.metadata = job.metadata;
     const int w = job.terrain.width(), h = job.terrain.height();
-    write_bands(o->output, w, h, job.terrain.georef,
-                {{"svf", "1", p.svf.data(), {{"DEFINITION", "1 - mean sin^2(max(h,0)); cosine-weighted, horizontal"}}},
+    std::vector<OutputBand> bands{{"svf", "1", p.svf.data(), {{"DEFINITION", "1 - mean sin^2(max(h,0)); cosine-weighted, horizontal"}}},
                  {"svf_surface",
                   "1",
                   p.svf_surface.data(),
@@ -51,8 +50,14 @@ Runner setup(CLI::App& app) {
                  {"openness_negative",
                   "degree",
                   p.openness_negative.data(),
-                  {{"DEFINITION", "mean nadir angle of the lowest terrain (Yokoyama 2002)"}}}},
-                wo);
+                  {{"DEFINITION", "mean nadir angle of the lowest terrain (Yokoyama 2002)"}}}};
+    if (!job.field.svf_direct.empty()) {
+      bands.push_back({"svf_montecarlo", "1", job.field.svf_direct.data(),
+                       {{"DEFINITION", "fraction of stratified cosine-weighted rays that reach the sky"}}});
+      bands.push_back({"svf_montecarlo_stderr", "1", job.field.svf_stderr.data(),
+                       {{"DEFINITION", "binomial standard error of svf_montecarlo (an upper bound)"}}});
+    }
+    write_bands(o->output, w, h, job.terrain.georef, bands, wo);
     if (!preview->empty()) write_preview_png(*preview, w, h, p.svf.data(), 0.0, 1.0, o->out.overwrite);
     return 0;
   };

@@ -24,7 +24,7 @@ double HorizonField::azimuth(std::size_t cell, int k) const {
   return sector_azimuth(k, directions) + (rotation.empty() ? 0.0 : rotation[cell]);
 }
 
-std::vector<std::string> horizon_method_names() { return {"sampled", "march", "sweep"}; }
+std::vector<std::string> horizon_method_names() { return {"sampled", "march", "sweep", "raycast"}; }
 
 std::unique_ptr<HorizonEngine> make_horizon_engine(std::string_view method, const HorizonParams& params) {
   if (params.directions < 1 || params.directions > 4096) throw Error("--directions must be between 1 and 4096");
@@ -32,6 +32,7 @@ std::unique_ptr<HorizonEngine> make_horizon_engine(std::string_view method, cons
   if (method == "sampled") return detail::make_sampled_engine(params);
   if (method == "march") return detail::make_march_engine(params);
   if (method == "sweep") return detail::make_sweep_engine(params);
+  if (method == "raycast") return detail::make_raycast_engine(params);
   std::string known;
   for (const auto& n : horizon_method_names()) known += (known.empty() ? "" : ", ") + n;
   throw Error("unknown method '" + std::string(method) + "' (known: " + known + ")");

@@ -9,5 +9,6 @@ namespace skyview::detail {
 std::unique_ptr<HorizonEngine> make_sampled_engine(const HorizonParams& params);
 std::unique_ptr<HorizonEngine> make_march_engine(const HorizonParams& params);
 std::unique_ptr<HorizonEngine> make_sweep_engine(const HorizonParams& params);
+std::unique_ptr<HorizonEngine> make_raycast_engine(const HorizonParams& params);
 
 }  // namespace skyview::detail

@@ -24,8 +24,9 @@ TEST_P(AnalyticCase, FlatPlaneAtEverestHeightWithTinyCellsIsOpenSky) {
   EXPECT_NEAR(r.svf, 1.0, 1e-6);
   EXPECT_NEAR(r.sky_visibility, 1.0, 1e-6);
   EXPECT_NEAR(r.svf_surface, 1.0, 1e-6);
-  EXPECT_NEAR(r.openness_positive, 90.0, 1e-4);
-  EXPECT_NEAR(r.openness_negative, 90.0, 1e-4);
+  // Grazing rays of the ray-cast reference see its eye lift (1e-4 cell) as a 1e-4 degree dip.
+  EXPECT_NEAR(r.openness_positive, 90.0, 1e-3);
+  EXPECT_NEAR(r.openness_negative, 90.0, 1e-3);
 }
 
 TEST_P(AnalyticCase, CircularPitBottomCentre) {
@@ -59,7 +60,7 @@ TEST_P(AnalyticCase, TiltedPlaneSurfaceSvfIsOnePlusCosOverTwo) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, AnalyticCase, ::testing::Values("march", "sampled", "sweep"));
+INSTANTIATE_TEST_SUITE_P(Methods, AnalyticCase, ::testing::Values("march", "sampled", "sweep", "raycast"));
 
 class StreetCanyon : public ::testing::TestWithParam<std::string> {};
 
@@ -77,7 +78,7 @@ TEST_P(StreetCanyon, FloorCentreMatchesInfiniteCanyon) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, StreetCanyon, ::testing::Values("march", "sweep"));
+INSTANTIATE_TEST_SUITE_P(Methods, StreetCanyon, ::testing::Values("march", "sweep", "raycast"));
 
 TEST(GroundFrame, PitInUtmAndInDegreesAtLatitude60GivesTheSameValues) {
   const double r = 20.0, depth = 10.0, cell = 0.2;

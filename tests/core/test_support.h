@@ -26,6 +26,7 @@ struct CellResult {
 inline CellResult run_cell(const Terrain& t, int col, int row, const std::string& method, HorizonParams p) {
   p.lower = true;
   if (method == "sweep") p.radius = 0.0;  // exact over the whole raster
+  if (method == "raycast") p.rays = 0;
   auto engine = make_horizon_engine(method, p);
   HorizonField field;
   ProgressCounter progress;

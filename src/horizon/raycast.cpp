@@ -1,0 +1,238 @@
+// The ray-cast reference. The terrain becomes a triangle mesh over cell centres (each quad of
+// four valid centres split along its (c,r)-(c+1,r+1) diagonal; quads touching nodata are left
+// open, so nodata never occludes), placed in the ground frame at the raster centre. Per cell
+// and direction, the horizon is found by bisecting the elevation angle with occlusion rays
+// (a heightfield seen from its surface is blocked below the horizon and open above it); the
+// svf is also estimated directly by stratified cosine-weighted hemisphere sampling, with its
+// standard error, as an independent check of the per-sector integration.
+#include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "methods.h"
+#include "ray_scan.h"
+#include "skyview/error.h"
+
+namespace skyview::detail {
+namespace {
+
+struct DeviceDeleter {
+  void operator()(RTCDeviceTy* d) const { rtcReleaseDevice(d); }
+};
+struct SceneDeleter {
+  void operator()(RTCSceneTy* s) const { rtcReleaseScene(s); }
+};
+using DevicePtr = std::unique_ptr<RTCDeviceTy, DeviceDeleter>;
+using ScenePtr = std::unique_ptr<RTCSceneTy, SceneDeleter>;
+
+// Embree reports errors through a C callback, which must not throw; it records the first one
+// and compute() turns it into a skyview::Error after building the scene.
+void embree_error(void* user, RTCError code, const char* message) {
+  auto* first = static_cast<std::string*>(user);
+  if (first->empty()) first->assign("Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : ""));
+}
+
+// Vertices in metres east/north of the buffer's first cell and height relative to the base.
+class TerrainMesh {
+ public:
+  TerrainMesh(RTCDevice device, const Terrain& t, double sign) {
+    const int w = t.width(), h = t.height();
+    j_ = t.frame.at(t.origin_col + 0.5 * w, t.origin_row + 0.5 * h);
+    scene_.reset(rtcNewScene(device));
+    rtcSetSceneFlags(scene_.get(), RTC_SCENE_FLAG_ROBUST);
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                          3 * sizeof(float), static_cast<std::size_t>(w) * h));
+    for (int r = 0; r < h; ++r) {
+      for (int c = 0; c < w; ++c) {
+        const std::size_t i = t.heights.index(c, r);
+        const float z = t.heights(c, r);
+        v[3 * i + 0] = static_cast<float>(j_.a * c + j_.b * r);
+        v[3 * i + 1] = static_cast<float>(j_.c * c + j_.d * r);
+        v[3 * i + 2] = std::isnan(z) ? 0.0f : static_cast<float>(sign * z);
+      }
+    }
+    std::vector<unsigned> idx;
+    idx.reserve(static_cast<std::size_t>(w) * h * 6);
+    for (int r = 0; r + 1 < h; ++r) {
+      for (int c = 0; c + 1 < w; ++c) {
+        const unsigned a = static_cast<unsigned>(t.heights.index(c, r)), b = a + 1;
+        const unsigned d = static_cast<unsigned>(t.heights.index(c, r + 1)), e = d + 1;
+        const bool va = t.valid(c, r), vb = t.valid(c + 1, r), vd = t.valid(c, r + 1), ve = t.valid(c + 1, r + 1);
+        if (va && vb && ve) idx.insert(idx.end(), {a, b, e});
+        if (va && ve && vd) idx.insert(idx.end(), {a, e, d});
+      }
+    }
+    if (idx.empty()) idx = {0, 0, 0};  // a degenerate triangle keeps Embree happy on tiny rasters
+    auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                              3 * sizeof(unsigned), idx.size() / 3));
+    std::copy(idx.begin(), idx.end(), ib);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(scene_.get(), geom);
+    rtcReleaseGeometry(geom);
+    rtcCommitScene(scene_.get());
+  }
+
+  // True when the ray from (col,row) at height z, along azimuth/elevation, hits terrain within `range`.
+  bool occluded(int col, int row, double z, double sin_az, double cos_az, double elevation, double range) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay ray{};
+    ray.org_x = static_cast<float>(j_.a * col + j_.b * row);
+    ray.org_y = static_cast<float>(j_.c * col + j_.d * row);
+    ray.org_z = static_cast<float>(z);
+    const double ce = std::cos(elevation);
+    ray.dir_x = static_cast<float>(ce * sin_az);
+    ray.dir_y = static_cast<float>(ce * cos_az);
+    ray.dir_z = static_cast<float>(std::sin(elevation));
+    ray.tnear = tnear_;
+    // The search radius is a ground distance: a steep ray may travel farther before it is reached.
+    ray.tfar = std::isinf(range) ? std::numeric_limits<float>::infinity() : static_cast<float>(range / std::max(ce, 1e-9));
+    ray.mask = 0xFFFFFFFFu;
+    rtcOccluded1(scene_.get(), &context, &ray);
+    return ray.tfar < 0.0f;
+  }
+
+  void set_tnear(float t) { tnear_ = t; }
+
+ private:
+  Jacobian j_;
+  ScenePtr scene_;
+  float tnear_ = 1e-3f;
+};
+
+class RaycastEngine final : public HorizonEngine {
+ public:
+  explicit RaycastEngine(const HorizonParams& p) : p_(p) {
+    if (p_.rays < 0 || p_.rays > 1 << 20) throw Error("--rays must be between 0 and 1048576");
+    if (p_.curvature == "on") throw Error("--method raycast models no Earth curvature; use --curvature off");
+  }
+  std::string_view name() const override { return "raycast"; }
+  std::string_view citation() const override {
+    return "Embree 3 occlusion rays on a triangle mesh over cell centres; horizon by bisection of the elevation "
+           "angle, svf also by stratified cosine-weighted Monte Carlo";
+  }
+  std::map<std::string, std::string> describe() const override {
+    return {{"METHOD", "raycast"},
+            {"DIRECTIONS", std::to_string(p_.directions)},
+            {"RADIUS_M", p_.radius == 0.0 ? "unlimited" : std::to_string(p_.radius)},
+            {"MC_RAYS_PER_CELL", std::to_string(p_.rays)},
+            {"BISECTION_STEPS", std::to_string(kBisections)}};
+  }
+  double radius() const override {
+    return p_.radius == 0.0 ? std::numeric_limits<double>::infinity() : p_.radius;
+  }
+
+  void compute(const Terrain& terrain, const Window& window, HorizonField& out,
+               ProgressCounter& progress) const override {
+    DevicePtr device(rtcNewDevice(nullptr));
+    if (!device) throw Error("cannot start Embree");
+    std::string embree_failure;
+    rtcSetDeviceErrorFunction(device.get(), embree_error, &embree_failure);
+    const double cell = terrain.frame.at(terrain.origin_col, terrain.origin_row).min_cell_size();
+    TerrainMesh upper(device.get(), terrain, 1.0);
+    upper.set_tnear(static_cast<float>(1e-4 * cell));
+    std::unique_ptr<TerrainMesh> lower;
+    if (p_.lower) {
+      lower = std::make_unique<TerrainMesh>(device.get(), terrain, -1.0);
+      lower->set_tnear(static_cast<float>(1e-4 * cell));
+    }
+    if (!embree_failure.empty()) throw Error(embree_failure);
+    out.resize(window.cols, window.rows, p_.directions, p_.lower);
+    if (p_.rays > 0) {
+      out.svf_direct.assign(static_cast<std::size_t>(window.cols) * window.rows, std::numeric_limits<float>::quiet_NaN());
+      out.svf_stderr.assign(out.svf_direct.size(), std::numeric_limits<float>::quiet_NaN());
+    }
+    const int n = p_.directions;
+    std::vector<double> sin_k(n), cos_k(n);
+    for (int k = 0; k < n; ++k) {
+      sin_k[k] = std::sin(sector_azimuth(k, n));
+      cos_k[k] = std::cos(sector_azimuth(k, n));
+    }
+    const double range = radius();
+    // The eye sits a hair above the surface so that rays leave its own triangles.
+    const double lift = 1e-4 * cell;
+    tbb::parallel_for(tbb::blocked_range<int>(0, window.rows), [&](const tbb::blocked_range<int>& rows) {
+      for (int wr = rows.begin(); wr != rows.end(); ++wr) {
+        const int row = window.row0 + wr;
+        for (int wc = 0; wc < window.cols; ++wc) {
+          const int col = window.col0 + wc;
+          if (!terrain.valid(col, row)) continue;
+          const std::size_t cell_index = out.cell(wc, wr);
+          const double z = terrain.heights(col, row);
+          for (int k = 0; k < n; ++k) {
+            out.upper_of(cell_index)[k] =
+                static_cast<float>(bisect_horizon(upper, col, row, z + lift, sin_k[k], cos_k[k], range));
+            if (lower) {
+              out.lower_of(cell_index)[k] =
+                  static_cast<float>(-bisect_horizon(*lower, col, row, -z + lift, sin_k[k], cos_k[k], range));
+            }
+          }
+          if (p_.rays > 0) monte_carlo_svf(upper, terrain, col, row, z + lift, range, out, cell_index);
+        }
+        progress.advance(window.cols);
+      }
+    });
+  }
+
+ private:
+  static constexpr int kBisections = 24;  // 180° / 2^24 ≈ 1e-5 degrees
+
+  static double bisect_horizon(const TerrainMesh& mesh, int col, int row, double z, double s, double c,
+                               double range) {
+    double lo = -0.5 * M_PI, hi = 0.5 * M_PI;  // lo is blocked (or the nadir), hi is open
+    if (!mesh.occluded(col, row, z, s, c, 0.0, range)) {
+      hi = 0.0;  // the horizontal is open: the horizon is at or below it
+    } else {
+      lo = 0.0;
+    }
+    for (int i = 0; i < kBisections; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (mesh.occluded(col, row, z, s, c, mid, range) ? lo : hi) = mid;
+    }
+    // Nothing in range below the horizontal either: the same convention as the other methods.
+    if (lo == -0.5 * M_PI && hi < -0.5 * M_PI + 1e-6) return 0.0;
+    return 0.5 * (lo + hi);
+  }
+
+  void monte_carlo_svf(const TerrainMesh& mesh, const Terrain& t, int col, int row, double z, double range,
+                       HorizonField& out, std::size_t cell_index) const {
+    // Stratified cosine-weighted directions: strata in (u, v) map through Malley's method.
+    const int side = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(p_.rays))));
+    const int total = side * side;
+    std::uint64_t state = splitmix64(t.global_id(col, row) ^ (p_.seed * 0x9E3779B97F4A7C15ull));
+    auto uniform = [&state] {
+      state = splitmix64(state);
+      return static_cast<double>(state >> 11) * 0x1.0p-53;
+    };
+    int open = 0;
+    for (int i = 0; i < side; ++i) {
+      for (int j = 0; j < side; ++j) {
+        const double u = (i + uniform()) / side, v = (j + uniform()) / side;
+        const double sin_zenith = std::sqrt(u), azimuth = 2.0 * M_PI * v;
+        const double elevation = std::acos(sin_zenith);  // elevation = 90° - zenith
+        open += !mesh.occluded(col, row, z, std::sin(azimuth), std::cos(azimuth), elevation, range);
+      }
+    }
+    const double p = static_cast<double>(open) / total;
+    out.svf_direct[cell_index] = static_cast<float>(p);
+    // Binomial standard error; stratification makes the true error smaller, so this is an upper bound.
+    out.svf_stderr[cell_index] = static_cast<float>(std::sqrt(p * (1.0 - p) / total));
+  }
+
+  HorizonParams p_;
+};
+
+}  // namespace
+
+std::unique_ptr<HorizonEngine> make_raycast_engine(const HorizonParams& params) {
+  return std::make_unique<RaycastEngine>(params);
+}
+
+}  // namespace skyview::detail
