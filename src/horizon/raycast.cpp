@@ -1,6 +1,9 @@
-// The ray-cast reference. The terrain becomes a triangle mesh over cell centres (each quad of
-// four valid centres split along its (c,r)-(c+1,r+1) diagonal; quads touching nodata are left
-// open, so nodata never occludes), placed in the ground frame at the raster centre. Per cell
+// The ray-cast reference. The terrain becomes a triangle mesh over cell centres: each quad of
+// four valid centres is split into four triangles around a centre vertex at the bilinear value
+// there, so the mesh is linear along grid lines exactly as the march and sweep read it, and
+// close to bilinear inside; a quad with one nodata corner keeps the triangle of the other three,
+// one with more is left open (nodata never occludes). The mesh sits in the ground frame at the
+// raster centre. Per cell
 // and direction, the horizon is found by bisecting the elevation angle with occlusion rays
 // (a heightfield seen from its surface is blocked below the horizon and open above it); the
 // svf is also estimated directly by stratified cosine-weighted hemisphere sampling, with its
@@ -9,6 +12,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -47,26 +51,44 @@ class TerrainMesh {
     scene_.reset(rtcNewScene(device));
     rtcSetSceneFlags(scene_.get(), RTC_SCENE_FLAG_ROBUST);
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    // Cell-centre vertices, then one vertex at the centre of every quad holding the bilinear
+    // value there (the mean of its corners).
+    const std::size_t cell_vertices = static_cast<std::size_t>(w) * h;
+    const std::size_t quads = static_cast<std::size_t>(std::max(0, w - 1)) * std::max(0, h - 1);
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                          3 * sizeof(float), static_cast<std::size_t>(w) * h));
+                                                          3 * sizeof(float), cell_vertices + quads));
+    auto put = [&](std::size_t i, double col, double row, double z) {
+      v[3 * i + 0] = static_cast<float>(j_.a * col + j_.b * row);
+      v[3 * i + 1] = static_cast<float>(j_.c * col + j_.d * row);
+      v[3 * i + 2] = static_cast<float>(sign * z);
+      extent_ = std::max({extent_, std::abs(double(v[3 * i])), std::abs(double(v[3 * i + 1])), std::abs(z)});
+    };
     for (int r = 0; r < h; ++r) {
       for (int c = 0; c < w; ++c) {
-        const std::size_t i = t.heights.index(c, r);
         const float z = t.heights(c, r);
-        v[3 * i + 0] = static_cast<float>(j_.a * c + j_.b * r);
-        v[3 * i + 1] = static_cast<float>(j_.c * c + j_.d * r);
-        v[3 * i + 2] = std::isnan(z) ? 0.0f : static_cast<float>(sign * z);
+        put(t.heights.index(c, r), c, r, std::isnan(z) ? 0.0 : z);
       }
     }
     std::vector<unsigned> idx;
-    idx.reserve(static_cast<std::size_t>(w) * h * 6);
+    idx.reserve(quads * 12);
     for (int r = 0; r + 1 < h; ++r) {
       for (int c = 0; c + 1 < w; ++c) {
         const unsigned a = static_cast<unsigned>(t.heights.index(c, r)), b = a + 1;
         const unsigned d = static_cast<unsigned>(t.heights.index(c, r + 1)), e = d + 1;
+        const unsigned m = static_cast<unsigned>(cell_vertices + static_cast<std::size_t>(r) * (w - 1) + c);
         const bool va = t.valid(c, r), vb = t.valid(c + 1, r), vd = t.valid(c, r + 1), ve = t.valid(c + 1, r + 1);
-        if (va && vb && ve) idx.insert(idx.end(), {a, b, e});
-        if (va && ve && vd) idx.insert(idx.end(), {a, e, d});
+        const int valid = va + vb + vd + ve;
+        put(m, c + 0.5, r + 0.5,
+            valid == 4 ? 0.25 * (double(t.heights(c, r)) + t.heights(c + 1, r) + t.heights(c, r + 1) + t.heights(c + 1, r + 1))
+                       : 0.0);
+        if (valid == 4) {
+          idx.insert(idx.end(), {a, b, m, b, e, m, e, d, m, d, a, m});
+        } else if (valid == 3) {  // the valid half; nodata never occludes
+          if (!va) idx.insert(idx.end(), {b, e, d});
+          if (!vb) idx.insert(idx.end(), {a, e, d});
+          if (!vd) idx.insert(idx.end(), {a, b, e});
+          if (!ve) idx.insert(idx.end(), {a, b, d});
+        }
       }
     }
     if (idx.empty()) idx = {0, 0, 0};  // a degenerate triangle keeps Embree happy on tiny rasters
@@ -91,7 +113,9 @@ class TerrainMesh {
     ray.dir_x = static_cast<float>(ce * sin_az);
     ray.dir_y = static_cast<float>(ce * cos_az);
     ray.dir_z = static_cast<float>(std::sin(elevation));
-    ray.tnear = tnear_;
+    // No tnear: a wall one cell away is hit within lift/slope of the eye, and skipping such hits
+    // lets the ray slip under the surface. The eye's lift alone keeps it off its own triangles.
+    ray.tnear = 0.0f;
     // The search radius is a ground distance: a steep ray may travel farther before it is reached.
     ray.tfar = std::isinf(range) ? std::numeric_limits<float>::infinity() : static_cast<float>(range / std::max(ce, 1e-9));
     ray.mask = 0xFFFFFFFFu;
@@ -99,12 +123,13 @@ class TerrainMesh {
     return ray.tfar < 0.0f;
   }
 
-  void set_tnear(float t) { tnear_ = t; }
+  // The largest coordinate magnitude, which sets the float resolution of the mesh.
+  double extent() const { return extent_; }
 
  private:
   Jacobian j_;
   ScenePtr scene_;
-  float tnear_ = 1e-3f;
+  double extent_ = 0.0;
 };
 
 class RaycastEngine final : public HorizonEngine {
@@ -137,12 +162,8 @@ class RaycastEngine final : public HorizonEngine {
     rtcSetDeviceErrorFunction(device.get(), embree_error, &embree_failure);
     const double cell = terrain.frame.at(terrain.origin_col, terrain.origin_row).min_cell_size();
     TerrainMesh upper(device.get(), terrain, 1.0);
-    upper.set_tnear(static_cast<float>(1e-4 * cell));
     std::unique_ptr<TerrainMesh> lower;
-    if (p_.lower) {
-      lower = std::make_unique<TerrainMesh>(device.get(), terrain, -1.0);
-      lower->set_tnear(static_cast<float>(1e-4 * cell));
-    }
+    if (p_.lower) lower = std::make_unique<TerrainMesh>(device.get(), terrain, -1.0);
     if (!embree_failure.empty()) throw Error(embree_failure);
     out.resize(window.cols, window.rows, p_.directions, p_.lower);
     if (p_.rays > 0) {
@@ -156,8 +177,9 @@ class RaycastEngine final : public HorizonEngine {
       cos_k[k] = std::cos(sector_azimuth(k, n));
     }
     const double range = radius();
-    // The eye sits a hair above the surface so that rays leave its own triangles.
-    const double lift = 1e-4 * cell;
+    // The eye sits a hair above the surface so that rays leave its own triangles: 1e-4 of a cell,
+    // or 64 float steps of the largest coordinate when that is more.
+    const double lift = std::max(1e-4 * cell, 64.0 * upper.extent() * std::numeric_limits<float>::epsilon());
     tbb::parallel_for(tbb::blocked_range<int>(0, window.rows), [&](const tbb::blocked_range<int>& rows) {
       for (int wr = rows.begin(); wr != rows.end(); ++wr) {
         const int row = window.row0 + wr;

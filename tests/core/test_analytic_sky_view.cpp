@@ -24,9 +24,10 @@ TEST_P(AnalyticCase, FlatPlaneAtEverestHeightWithTinyCellsIsOpenSky) {
   EXPECT_NEAR(r.svf, 1.0, 1e-6);
   EXPECT_NEAR(r.sky_visibility, 1.0, 1e-6);
   EXPECT_NEAR(r.svf_surface, 1.0, 1e-6);
-  // Grazing rays of the ray-cast reference see its eye lift (1e-4 cell) as a 1e-4 degree dip.
-  EXPECT_NEAR(r.openness_positive, 90.0, 1e-3);
-  EXPECT_NEAR(r.openness_negative, 90.0, 1e-3);
+  // Grazing rays of the ray-cast reference see its eye lift (64 float steps of the mesh extent)
+  // as a dip of about 1e-3 degrees at the 2 m radius.
+  EXPECT_NEAR(r.openness_positive, 90.0, 3e-3);
+  EXPECT_NEAR(r.openness_negative, 90.0, 3e-3);
 }
 
 TEST_P(AnalyticCase, CircularPitBottomCentre) {
