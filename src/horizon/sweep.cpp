@@ -31,16 +31,40 @@ struct HullPoint {
   double t, z;
 };
 
+// Slope of the tangent from p (nearer than every hull point) to an upper hull stored far-to-
+// near: slopes from an outside point along a convex chain are unimodal, so bisection finds it.
+inline double tangent_slope(const std::vector<HullPoint>& hull, const HullPoint& p) {
+  auto slope = [&](std::size_t i) { return (hull[i].z - p.z) / (hull[i].t - p.t); };
+  std::size_t lo = 0, hi = hull.size() - 1;
+  while (lo < hi) {
+    const std::size_t mid = (lo + hi) / 2;
+    if (slope(mid) < slope(mid + 1)) {
+      lo = mid + 1;
+    } else {
+      hi = mid;
+    }
+  }
+  return slope(lo);
+}
+
+struct LineSample {
+  long line;
+  HullPoint point;
+};
+
 // One direction over the whole buffer; writes the horizon angle (or the lowest angle when
 // `negate`) for the window's cells into `plane` (window-sized, row-major).
 //
-// Lines are exact straight lines one cell apart across the minor axis, sampled once per major
-// step by linear interpolation between the two neighbouring cell centres (the surface the march
-// reads). Each sample's horizon is its tangent to the hull of the samples ahead, found as the
-// sample is pushed; a cell takes the horizons of the two line samples beside it, interpolated
-// by its offset, which is exact on planes and exact for cells a line passes through.
+// Parallel lines one cell apart cover the raster, sampled once per major step by linear
+// interpolation between neighbouring cell centres (the surface the march reads). A cell's own
+// ray runs between two lines at a constant offset. Its first kNearSteps crossings are read
+// exactly, as the march does: near terrain moves the angle most, and there a line's sideways
+// offset would look like a slope. Beyond them the cell, at its own height, takes its tangent to
+// the hulls of the two lines beside it, interpolated by its offset; line samples join their
+// hull only once they are more than kNearSteps behind the current step.
 void sweep_direction(const Terrain& terrain, const Window& window, double azimuth, double curvature, bool negate,
                      float* plane) {
+  constexpr int kNearSteps = 4;
   const int W = terrain.width(), H = terrain.height();
   const Jacobian j = terrain.frame.at(terrain.origin_col + 0.5 * W, terrain.origin_row + 0.5 * H);
   double pc, pr;
@@ -55,65 +79,86 @@ void sweep_direction(const Terrain& terrain, const Window& window, double azimut
   const double k = by_rows ? pc / pr : pr / pc;  // minor-axis drift of a line per major step
   const double t_major = by_rows ? t_row : t_col, t_minor = by_rows ? t_col : t_row;
   const bool ahead_is_low = by_rows ? pr < 0 : pc < 0;  // the viewer looks towards index 0
+  const int toward = ahead_is_low ? -1 : 1;             // major index change per step ahead
+  const double t_step = std::abs(t_major) + k * toward * t_minor;  // along-ray distance per step
+  const double k_step = k * toward;  // minor drift per step ahead
   const long max_drift = static_cast<long>(std::ceil(std::abs(k) * (major_n - 1))) + 1;
   const long m_min = -max_drift, lines = minor_n + 2 * max_drift + 2;
   std::vector<std::vector<HullPoint>> hulls(static_cast<std::size_t>(lines));
-  // Horizon of each line's sample at the current major step; NaN where the line has none.
-  std::vector<double> line_angle(static_cast<std::size_t>(lines), std::numeric_limits<double>::quiet_NaN());
+  std::vector<std::vector<LineSample>> pending(kNearSteps + 1);  // samples not yet in a hull, by step
   const float* z = terrain.heights.data();
   const std::ptrdiff_t minor_stride = by_rows ? 1 : W, major_stride = by_rows ? W : 1;
+  auto height = [&](int major, double x) -> double {  // linear along the minor axis; x in range
+    const float* zrow = z + major * major_stride;
+    const int i0 = std::min(static_cast<int>(x), minor_n - 1);
+    const double fx = x - i0;
+    const double z0 = zrow[i0 * minor_stride];
+    return fx > 0.0 ? z0 + fx * (zrow[(i0 + 1) * minor_stride] - z0) : z0;
+  };
 
   for (int step = 0; step < major_n; ++step) {
     const int major = ahead_is_low ? step : major_n - 1 - step;
     const double shift = major * k;  // line m sits at minor position m + shift
-    const float* zrow = z + major * major_stride;
-    const long m_first = static_cast<long>(std::ceil(-shift) - 1),
-               m_last = static_cast<long>(std::floor(minor_n - 1 - shift) + 1);
-    for (long m = m_first; m <= m_last; ++m) {
-      double& angle = line_angle[static_cast<std::size_t>(m - m_min)];
-      angle = std::numeric_limits<double>::quiet_NaN();
-      const double x = m + shift;
-      if (x < 0.0 || x > minor_n - 1) continue;
-      const int i0 = std::min(static_cast<int>(x), minor_n - 1);
-      const double fx = x - i0;
-      const double z0 = zrow[i0 * minor_stride];
-      const double zs = fx > 0.0 ? z0 + fx * (zrow[(i0 + 1) * minor_stride] - z0) : z0;
-      if (std::isnan(zs)) continue;  // nodata neither occludes nor has a horizon
-      const double t = major * t_major + x * t_minor;
-      const HullPoint p{t, sign * zs - c * t * t};
-      auto& hull = hulls[static_cast<std::size_t>(m - m_min)];
-      // Pop hull points that lie on or below the chord from p to the point after them; the
-      // point left on top is p's tangent point.
+    // Samples from more than kNearSteps steps back join their line's hull.
+    for (const LineSample& s : pending[step % (kNearSteps + 1)]) {
+      auto& hull = hulls[static_cast<std::size_t>(s.line - m_min)];
+      const HullPoint& p = s.point;
       while (hull.size() >= 2) {
         const HullPoint& a = hull[hull.size() - 1];
         const HullPoint& b = hull[hull.size() - 2];
         if ((a.z - p.z) * (b.t - p.t) > (b.z - p.z) * (a.t - p.t)) break;
         hull.pop_back();
       }
-      // Nothing ahead: terrain beyond the raster does not occlude (angle 0).
-      angle = hull.empty() ? 0.0 : std::atan((hull.back().z - p.z) / (hull.back().t - p.t) + 2.0 * c * t);
       hull.push_back(p);
     }
+    pending[step % (kNearSteps + 1)].clear();
+
+    const float* zrow = z + major * major_stride;
     for (int minor = 0; minor < minor_n; ++minor) {
       const int col = by_rows ? minor : major, row = by_rows ? major : minor;
       const int wc = col - window.col0, wr = row - window.row0;
       if (wc < 0 || wr < 0 || wc >= window.cols || wr >= window.rows) continue;
-      if (std::isnan(zrow[minor * minor_stride])) continue;
+      const float zc = zrow[minor * minor_stride];
+      if (std::isnan(zc)) continue;
+      const double t = major * t_major + minor * t_minor;
+      double best = -std::numeric_limits<double>::infinity();
+      // Near field: the cell's own ray, crossing by crossing.
+      for (int s = 1; s <= kNearSteps; ++s) {
+        const int mj = major + toward * s;
+        const double x = minor + s * k_step;
+        if (mj < 0 || mj >= major_n || x < 0.0 || x > minor_n - 1) break;
+        const double zs = height(mj, x);
+        if (std::isnan(zs)) continue;
+        const double d = s * t_step;
+        best = std::max(best, (sign * zs - sign * zc - c * d * d) / d);
+      }
+      // Far field: tangents to the two neighbouring lines' hulls.
       const double u = minor - shift;
       const long m0 = static_cast<long>(std::floor(u));
       const double f = u - m0;
-      const double a0 = line_angle[static_cast<std::size_t>(m0 - m_min)];
-      const double a1 = line_angle[static_cast<std::size_t>(m0 + 1 - m_min)];
-      // A line without a sample here (nodata) gives way to the other one.
-      double angle = 0.0;
-      if (std::isnan(a0)) {
-        angle = std::isnan(a1) ? 0.0 : a1;
-      } else if (std::isnan(a1) || f == 0.0) {
-        angle = a0;
-      } else {
-        angle = (1.0 - f) * a0 + f * a1;
+      const HullPoint p{t, sign * zc - c * t * t};
+      double far = 0.0, weight = 0.0;
+      for (int side = 0; side < 2; ++side) {
+        const double w = side == 0 ? 1.0 - f : f;
+        const auto& hull = hulls[static_cast<std::size_t>(m0 + side - m_min)];
+        if (w == 0.0 || hull.empty()) continue;
+        far += w * std::atan(tangent_slope(hull, p) + 2.0 * c * t);
+        weight += w;
       }
+      double angle = std::isinf(best) ? -0.5 * M_PI : std::atan(best);
+      if (weight > 0.0) angle = std::max(angle, far / weight);
+      if (std::isinf(best) && weight == 0.0) angle = 0.0;  // nothing ahead: no occlusion
       plane[static_cast<std::size_t>(wr) * window.cols + wc] = static_cast<float>(sign * angle);
+    }
+    // This step's line samples wait kNearSteps steps before joining the hulls.
+    auto& mine = pending[(step + kNearSteps + 1) % (kNearSteps + 1)];
+    const long m_first = static_cast<long>(std::ceil(-shift)), m_last = static_cast<long>(std::floor(minor_n - 1 - shift));
+    for (long m = m_first; m <= m_last; ++m) {
+      const double x = m + shift;
+      const double zs = height(major, x);
+      if (std::isnan(zs)) continue;  // nodata never occludes
+      const double t = major * t_major + x * t_minor;
+      mine.push_back({m, {t, sign * zs - c * t * t}});
     }
   }
 }
