@@ -14,9 +14,9 @@ constexpr int kMinSolarYear = -2000;
 constexpr int kMaxSolarYear = 6000;
 
 struct ParsedTime {
-  double unix_utc = 0.0;        // the instant, seconds since 1970-01-01T00:00Z
-  double utc_offset_s = 0.0;    // local minus UTC at that instant
-  std::string zone;             // IANA name when one was given (directly or as default), else empty
+  double unix_utc = 0.0;      // the instant, seconds since 1970-01-01T00:00Z
+  double utc_offset_s = 0.0;  // local minus UTC at that instant
+  std::string zone;           // IANA name when one was given (directly or as default), else empty
 };
 
 // Parses `text`. When it carries neither an offset nor a zone, `default_zone` is used (an IANA

@@ -21,8 +21,8 @@ std::int64_t floor_div(std::int64_t a, std::int64_t b) { return a / b - ((a % b 
 std::int64_t days_from_civil(const CivilDate& d) {
   const std::int64_t y = static_cast<std::int64_t>(d.year) - (d.month <= 2 ? 1 : 0);
   const std::int64_t era = floor_div(y, 400);
-  const std::int64_t year_of_era = y - era * 400;                          // [0, 399]
-  const std::int64_t month_from_march = (d.month + 9) % 12;                // March = 0
+  const std::int64_t year_of_era = y - era * 400;                                 // [0, 399]
+  const std::int64_t month_from_march = (d.month + 9) % 12;                       // March = 0
   const std::int64_t day_of_year = (153 * month_from_march + 2) / 5 + d.day - 1;  // [0, 365]
   const std::int64_t day_of_era = year_of_era * 365 + year_of_era / 4 - year_of_era / 100 + day_of_year;
   return era * kDaysPer400Years + day_of_era - kMarch1Year0ToEpoch;

@@ -2,6 +2,7 @@
 // "Solar position algorithm for solar radiation applications", Solar Energy 76(5):577-589, 2004
 // and NREL/TP-560-34302 (revised 2008). Equation numbers below are the report's.
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "skyview/civil_time.h"
@@ -89,7 +90,9 @@ void compute_geocentric(double jd, double delta_t_s, SpaResult& r) {
   r.mean_obliquity_arcsec =
       84381.448 +
       u * (-4680.93 +
-           u * (-1.55 + u * (1999.25 + u * (-51.38 + u * (-249.67 + u * (-39.05 + u * (7.12 + u * (27.87 + u * (5.79 + u * 2.45)))))))));
+           u * (-1.55 +
+                u * (1999.25 +
+                     u * (-51.38 + u * (-249.67 + u * (-39.05 + u * (7.12 + u * (27.87 + u * (5.79 + u * 2.45)))))))));
   r.true_obliquity = r.mean_obliquity_arcsec / 3600.0 + r.nutation_obliquity;
 
   // 3.6-3.7 aberration and apparent longitude (Eqs. 26-27).
@@ -104,8 +107,8 @@ void compute_geocentric(double jd, double delta_t_s, SpaResult& r) {
 
   // 3.9-3.10 geocentric right ascension and declination (Eqs. 30-31).
   const double lambda = rad(r.apparent_sun_longitude), beta = rad(r.geocentric_latitude);
-  r.geocentric_right_ascension =
-      wrap_degrees(deg(std::atan2(std::sin(lambda) * std::cos(eps) - std::tan(beta) * std::sin(eps), std::cos(lambda))));
+  r.geocentric_right_ascension = wrap_degrees(
+      deg(std::atan2(std::sin(lambda) * std::cos(eps) - std::tan(beta) * std::sin(eps), std::cos(lambda))));
   r.geocentric_declination =
       deg(std::asin(std::sin(beta) * std::cos(eps) + std::cos(beta) * std::sin(eps) * std::sin(lambda)));
 }
@@ -116,24 +119,34 @@ using spa::deg;
 using spa::rad;
 using spa::wrap_degrees;
 
+namespace {
+
+std::string number_text(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", v);
+  return text;
+}
+
+}  // namespace
+
 void validate_site(const Site& s) {
   auto require = [](bool ok, const std::string& what) {
     if (!ok) throw Error(what);
   };
   require(std::isfinite(s.latitude_deg) && std::abs(s.latitude_deg) <= 90.0,
-          "latitude " + std::to_string(s.latitude_deg) + " is outside -90..90 degrees");
+          "latitude " + number_text(s.latitude_deg) + " is outside -90..90 degrees");
   require(std::isfinite(s.longitude_deg) && std::abs(s.longitude_deg) <= 180.0,
-          "longitude " + std::to_string(s.longitude_deg) + " is outside -180..180 degrees");
+          "longitude " + number_text(s.longitude_deg) + " is outside -180..180 degrees");
   require(std::isfinite(s.elevation_m) && s.elevation_m >= -6500000.0 && s.elevation_m <= 100000.0,
-          "elevation " + std::to_string(s.elevation_m) + " m is outside -6500000..100000 m");
+          "elevation " + number_text(s.elevation_m) + " m is outside -6500000..100000 m");
   require(std::isfinite(s.pressure_mbar) && s.pressure_mbar >= 0.0 && s.pressure_mbar <= 5000.0,
-          "pressure " + std::to_string(s.pressure_mbar) + " mbar is outside 0..5000 mbar");
+          "pressure " + number_text(s.pressure_mbar) + " mbar is outside 0..5000 mbar");
   require(std::isfinite(s.temperature_c) && s.temperature_c > -273.15 && s.temperature_c <= 6000.0,
-          "temperature " + std::to_string(s.temperature_c) + " C is outside -273.15..6000 C");
+          "temperature " + number_text(s.temperature_c) + " C is outside -273.15..6000 C");
   require(std::isfinite(s.delta_ut1_s) && std::abs(s.delta_ut1_s) < 1.0,
-          "UT1-UTC " + std::to_string(s.delta_ut1_s) + " s is outside -1..1 s");
+          "UT1-UTC " + number_text(s.delta_ut1_s) + " s is outside -1..1 s");
   require(std::isfinite(s.delta_t_s) && (s.delta_t_s <= -1e8 || std::abs(s.delta_t_s) <= 1e6),
-          "Delta T " + std::to_string(s.delta_t_s) + " s is outside -1e6..1e6 s");
+          "Delta T " + number_text(s.delta_t_s) + " s is outside -1e6..1e6 s");
 }
 
 namespace {
@@ -211,8 +224,8 @@ SpaResult spa_compute(double julian_day_ut, const Site& site) {
   r.zenith = 90.0 - r.elevation;
 
   // 3.15 azimuth (Eqs. 45-46): astronomers' from south, then navigators' from north.
-  r.azimuth_from_south = wrap_degrees(
-      deg(std::atan2(std::sin(h_p), std::cos(h_p) * std::sin(phi) - std::tan(delta_p) * std::cos(phi))));
+  r.azimuth_from_south =
+      wrap_degrees(deg(std::atan2(std::sin(h_p), std::cos(h_p) * std::sin(phi) - std::tan(delta_p) * std::cos(phi))));
   r.azimuth = wrap_degrees(r.azimuth_from_south + 180.0);
 
   r.equation_of_time_min = equation_of_time_min(r);
@@ -241,7 +254,8 @@ double incidence_angle_deg(double zenith_deg, double azimuth_deg, double slope_d
   // Eq. 47 with the surface azimuth rotation taken from north; the cosine of the difference
   // is the same whichever reference both azimuths share.
   const double z = rad(zenith_deg), w = rad(slope_deg);
-  const double c = std::cos(z) * std::cos(w) + std::sin(w) * std::sin(z) * std::cos(rad(azimuth_deg - surface_azimuth_deg));
+  const double c =
+      std::cos(z) * std::cos(w) + std::sin(w) * std::sin(z) * std::cos(rad(azimuth_deg - surface_azimuth_deg));
   return deg(std::acos(std::fmax(-1.0, std::fmin(1.0, c))));
 }
 

@@ -14,7 +14,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kRadPerDeg = kPi / 180.0;
 inline double rad(double deg) { return deg * kRadPerDeg; }
 inline double deg(double rad) { return rad / kRadPerDeg; }
-double wrap_degrees(double deg);          // [0, 360)
-double wrap_signed_degrees(double deg);   // [-180, 180)
+double wrap_degrees(double deg);         // [0, 360)
+double wrap_signed_degrees(double deg);  // [-180, 180)
 
 }  // namespace skyview::spa
