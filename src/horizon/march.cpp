@@ -14,12 +14,13 @@ namespace {
 struct EveryCrossing {
   double radius;
   template <class Visit>
-  void walk(double col_per_m, double row_per_m, Visit&& visit) const {
+  void walk(double col_per_m, double row_per_m, double max_distance, double curvature, Visit&& visit) const {
     // One step advances exactly one column or one row along the dominant axis.
     const double step = 1.0 / std::max(std::abs(col_per_m), std::abs(row_per_m));
-    const long long n = static_cast<long long>(std::min(radius / step, 1e9));
+    const long long n = static_cast<long long>(std::min(std::min(radius, max_distance) / step, 1e9));
     for (long long i = 1; i <= n; ++i) {
-      if (!visit(i * step)) return;
+      const double d = i * step;
+      if (!visit(d, 1.0 / d, curvature * d * d)) return;
     }
   }
 };

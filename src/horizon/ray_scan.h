@@ -45,8 +45,10 @@ struct ScanSettings {
 };
 
 // Placement must provide
-//   template <class Visit> void walk(double col_per_m, double row_per_m, Visit&& visit) const;
-// calling visit(distance_m) for increasing distances until visit returns false.
+//   template <class Visit> void walk(double col_per_m, double row_per_m, double max_distance, double curvature,
+//                                    Visit&& visit) const;
+// calling visit(d, 1/d, curvature*d*d) for increasing distances d <= max_distance (where the ray
+// leaves the buffer) until visit returns false.
 template <class Placement>
 void scan_rays(const Terrain& terrain, const Window& window, HorizonField& out, ProgressCounter& progress,
                const ScanSettings& s, const Placement& placement) {
@@ -68,6 +70,8 @@ void scan_rays(const Terrain& terrain, const Window& window, HorizonField& out, 
   }
   const double c = s.curvature;
   const bool early = s.early_exit;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const double last_col = terrain.width() - 1, last_row = terrain.height() - 1;
 
   tbb::parallel_for(tbb::blocked_range<int>(0, window.rows), [&](const tbb::blocked_range<int>& range) {
     for (int wr = range.begin(); wr != range.end(); ++wr) {
@@ -97,17 +101,18 @@ void scan_rays(const Terrain& terrain, const Window& window, HorizonField& out, 
           const double pc = ie_c * east + in_c * north, pr = ie_r * east + in_r * north;
           double max_t = -std::numeric_limits<double>::infinity();
           double min_t = std::numeric_limits<double>::infinity();
-          placement.walk(pc, pr, [&](double d) {
-            const double x = col + pc * d, y = row + pr * d;
-            if (!sampler.inside(x, y)) return false;
+          // Distance at which the ray leaves the buffer, so samples need no bounds check.
+          const double exit_c = pc > 0 ? (last_col - col) / pc : (pc < 0 ? -col / pc : kInf);
+          const double exit_r = pr > 0 ? (last_row - row) / pr : (pr < 0 ? -row / pr : kInf);
+          placement.walk(pc, pr, std::min(exit_c, exit_r) * (1.0 + 1e-12), c, [&](double d, double inv_d, double drop) {
+            const double x = std::clamp(col + pc * d, 0.0, last_col), y = std::clamp(row + pr * d, 0.0, last_row);
             const double z = sampler.at(x, y);
             if (std::isnan(z)) return true;
-            const double inv_d = 1.0 / d;
-            const double t = (z - z0 - c * d * d) * inv_d;
+            const double t = (z - z0 - drop) * inv_d;
             max_t = std::max(max_t, t);
             min_t = std::min(min_t, t);
             if (early) {
-              const double bound_hi = (above - c * d * d) * inv_d;  // decreasing in d since above >= 0
+              const double bound_hi = (above - drop) * inv_d;  // decreasing in d since above >= 0
               if (bound_hi <= max_t) {
                 if (!lo) return false;
                 const double bound_lo = below * inv_d - c * s.max_distance;

@@ -16,11 +16,12 @@ namespace skyview::detail {
 namespace {
 
 struct FixedDistances {
-  std::vector<double> distance;
+  std::vector<double> distance, inverse;
   template <class Visit>
-  void walk(double, double, Visit&& visit) const {
-    for (double d : distance) {
-      if (!visit(d)) return;
+  void walk(double, double, double max_distance, double curvature, Visit&& visit) const {
+    const std::size_t n = distance.size();
+    for (std::size_t j = 0; j < n && distance[j] <= max_distance; ++j) {
+      if (!visit(distance[j], inverse[j], curvature * distance[j] * distance[j])) return;
     }
   }
 };
@@ -33,6 +34,7 @@ class SampledEngine final : public HorizonEngine {
     for (int j = 0; j < p_.samples; ++j) {
       const double f = (j + 1.0) / p_.samples;
       samples_.distance.push_back(p_.radius * f * f);
+      samples_.inverse.push_back(1.0 / samples_.distance.back());
     }
   }
   std::string_view name() const override { return "sampled"; }

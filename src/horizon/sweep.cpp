@@ -60,7 +60,7 @@ struct LineSample {
 // ray runs between two lines at a constant offset. Its first kNearSteps crossings are read
 // exactly, as the march does: near terrain moves the angle most, and there a line's sideways
 // offset would look like a slope. Beyond them the cell, at its own height, takes its tangent to
-// the hulls of the two lines beside it, interpolated by its offset; line samples join their
+// the hulls of the two lines beside it, the slopes interpolated by its offset; line samples join their
 // hull only once they are more than kNearSteps behind the current step.
 void sweep_direction(const Terrain& terrain, const Window& window, double azimuth, double curvature, bool negate,
                      float* plane) {
@@ -137,17 +137,18 @@ void sweep_direction(const Terrain& terrain, const Window& window, double azimut
       const long m0 = static_cast<long>(std::floor(u));
       const double f = u - m0;
       const HullPoint p{t, sign * zc - c * t * t};
+      // Slopes, not angles, are interpolated: one arctangent per cell and direction.
       double far = 0.0, weight = 0.0;
       for (int side = 0; side < 2; ++side) {
         const double w = side == 0 ? 1.0 - f : f;
         const auto& hull = hulls[static_cast<std::size_t>(m0 + side - m_min)];
         if (w == 0.0 || hull.empty()) continue;
-        far += w * std::atan(tangent_slope(hull, p) + 2.0 * c * t);
+        far += w * (tangent_slope(hull, p) + 2.0 * c * t);
         weight += w;
       }
-      double angle = std::isinf(best) ? -0.5 * M_PI : std::atan(best);
-      if (weight > 0.0) angle = std::max(angle, far / weight);
-      if (std::isinf(best) && weight == 0.0) angle = 0.0;  // nothing ahead: no occlusion
+      if (weight > 0.0) best = std::max(best, far / weight);
+      // Nothing ahead on either side: terrain beyond the raster does not occlude.
+      const double angle = std::isinf(best) ? 0.0 : std::atan(best);
       plane[static_cast<std::size_t>(wr) * window.cols + wc] = static_cast<float>(sign * angle);
     }
     // This step's line samples wait kNearSteps steps before joining the hulls.

@@ -1,0 +1,80 @@
+// Throughput of every horizon method in cell-directions per second on a synthetic city DSM.
+// Run: ./build/bench_horizon [--benchmark_filter=...]; sizes via SKYVIEW_BENCH_SIZE (default 2000).
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <map>
+#include <string>
+
+#include "skyview/horizon_engine.h"
+#include "skyview/synthetic.h"
+
+namespace {
+
+const skyview::Terrain& city(int size) {
+  static std::map<int, skyview::Terrain> cache;
+  auto it = cache.find(size);
+  if (it == cache.end()) {
+    it = cache.emplace(size, skyview::rasterize(skyview::synthetic_city(1), size, size, skyview::local_grid(size, size, 1.0))).first;
+  }
+  return it->second;
+}
+
+int bench_size() {
+  const char* s = std::getenv("SKYVIEW_BENCH_SIZE");
+  return s ? std::atoi(s) : 2000;
+}
+
+void run(benchmark::State& state, const std::string& method, skyview::HorizonParams p) {
+  const skyview::Terrain& t = city(bench_size());
+  auto engine = skyview::make_horizon_engine(method, p);
+  skyview::HorizonField field;
+  for (auto _ : state) {
+    skyview::ProgressCounter progress;
+    engine->compute(t, skyview::Window::whole(t), field, progress);
+    benchmark::DoNotOptimize(field.upper.data());
+  }
+  const double cell_directions = static_cast<double>(t.width()) * t.height() * p.directions;
+  state.counters["cell_dirs_per_s"] = benchmark::Counter(cell_directions, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["cells"] = static_cast<double>(t.width()) * t.height();
+}
+
+void BM_Sampled16x16(benchmark::State& s) {
+  skyview::HorizonParams p;
+  run(s, "sampled", p);
+}
+void BM_Sampled16x16NoEarlyExit(benchmark::State& s) {
+  skyview::HorizonParams p;
+  p.early_exit = false;
+  run(s, "sampled", p);
+}
+void BM_March16R100(benchmark::State& s) {
+  skyview::HorizonParams p;
+  p.radius = 100;
+  run(s, "march", p);
+}
+void BM_March16R100NoEarlyExit(benchmark::State& s) {
+  skyview::HorizonParams p;
+  p.radius = 100;
+  p.early_exit = false;
+  run(s, "march", p);
+}
+void BM_Sweep16(benchmark::State& s) {
+  skyview::HorizonParams p;
+  run(s, "sweep", p);
+}
+void BM_Sweep16WithLower(benchmark::State& s) {
+  skyview::HorizonParams p;
+  p.lower = true;
+  run(s, "sweep", p);
+}
+
+}  // namespace
+
+BENCHMARK(BM_Sampled16x16)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+BENCHMARK(BM_Sampled16x16NoEarlyExit)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+BENCHMARK(BM_March16R100)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+BENCHMARK(BM_March16R100NoEarlyExit)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+BENCHMARK(BM_Sweep16)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+BENCHMARK(BM_Sweep16WithLower)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+BENCHMARK_MAIN();
