@@ -1,0 +1,41 @@
+#pragma once
+// EnergyPlus weather (EPW) files: the location and the hourly solar irradiances the measured
+// skies need. Each record carries the UTC instant its irradiance refers to (see docs/sky.md):
+// the middle of the hour for TMY3/IWEC files (local standard time, hour h covers h−1..h), and for
+// PVGIS files (hours in UTC, "Irradiance Time Offset" comment) the stated offset instant.
+#include <string>
+#include <vector>
+
+namespace skyview {
+
+struct EpwLocation {
+  std::string city;
+  double latitude_deg = 0.0;   // north positive
+  double longitude_deg = 0.0;  // east positive
+  double time_zone_h = 0.0;    // standard time offset from UTC
+  double elevation_m = 0.0;
+};
+
+struct EpwRecord {
+  int year = 0, month = 0, day = 0, hour = 0;  // as stored; hour 1..24
+  double time_utc = 0.0;                       // instant the irradiance refers to (Unix seconds)
+  // Hourly energies (Wh/m²), i.e. mean irradiances over the hour (W/m²); missing codes and
+  // negative values are read as 0 and counted in EpwFile::missing_solar_values.
+  double global_horizontal = 0.0;
+  double direct_normal = 0.0;
+  double diffuse_horizontal = 0.0;
+};
+
+struct EpwFile {
+  EpwLocation location;
+  bool hours_in_utc = false;               // PVGIS convention
+  double irradiance_time_offset_h = -0.5;  // instant relative to the end of the hour
+  int missing_solar_values = 0;
+  std::vector<EpwRecord> records;
+};
+
+// Throws skyview::Error (one line, naming the file and line) for an unreadable file, a missing or
+// malformed LOCATION line, no data records, or a record with too few fields or a bad date.
+EpwFile read_epw(const std::string& path);
+
+}  // namespace skyview

@@ -1,0 +1,135 @@
+// EPW reader, tolerant of the quirks real files have (see ../shared/data/weather/SOURCE.md):
+// "unknown" text fields, empty design-condition blocks, CRLF line ends, trailing commas, "-0.00",
+// missing-value codes, years that change from month to month, and the PVGIS UTC convention.
+#include "skyview/epw.h"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "skyview/civil_time.h"
+#include "skyview/error.h"
+
+namespace skyview {
+namespace {
+
+std::vector<std::string> split_fields(const std::string& line) {
+  std::vector<std::string> fields;
+  std::string field;
+  std::istringstream in(line);
+  while (std::getline(in, field, ',')) fields.push_back(field);
+  if (!line.empty() && line.back() == ',') fields.emplace_back();
+  return fields;
+}
+
+std::string trim(std::string s) {
+  const auto first = s.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos) return {};
+  return s.substr(first, s.find_last_not_of(" \t\r\n") - first + 1);
+}
+
+bool parse_number(const std::string& text, double& value) {
+  const std::string t = trim(text);
+  if (t.empty()) return false;
+  const char* begin = t.data() + (t[0] == '+' ? 1 : 0);
+  const auto [end, ec] = std::from_chars(begin, t.data() + t.size(), value);
+  return ec == std::errc() && end == t.data() + t.size() && std::isfinite(value);
+}
+
+[[noreturn]] void fail(const std::string& path, int line, const std::string& what) {
+  throw Error(path + ":" + std::to_string(line) + ": " + what);
+}
+
+// Solar fields use 9999 (and 999999 for some generators) as "missing".
+double solar_value(const std::string& text, int& missing) {
+  double v = 0.0;
+  if (!parse_number(text, v) || v >= 9999.0) {
+    ++missing;
+    return 0.0;
+  }
+  if (v < 0.0) {
+    if (v < -0.5) ++missing;  // "-0.00" is a zero, not a missing value
+    return 0.0;
+  }
+  return v;
+}
+
+int days_in_month(int year, int month) {
+  static const int days[] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+  const bool leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
+  return month == 2 && leap ? 29 : days[month - 1];
+}
+
+}  // namespace
+
+EpwFile read_epw(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error(path + ": cannot open EPW file");
+  EpwFile file;
+  bool have_location = false, in_data = false;
+  static const std::regex offset_comment(R"(Irradiance Time Offset \(h\)\s*:\s*([-+0-9.eE]+))", std::regex::icase);
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (trim(line).empty()) continue;
+    const auto fields = split_fields(line);
+    const std::string key = trim(fields[0]);
+    if (!in_data) {
+      if (key == "LOCATION") {
+        if (fields.size() < 10) fail(path, number, "LOCATION line has fewer than 10 fields");
+        EpwLocation& loc = file.location;
+        loc.city = trim(fields[1]);
+        if (!parse_number(fields[6], loc.latitude_deg) || !parse_number(fields[7], loc.longitude_deg) ||
+            !parse_number(fields[8], loc.time_zone_h) || std::abs(loc.latitude_deg) > 90.0 ||
+            std::abs(loc.longitude_deg) > 180.0 || std::abs(loc.time_zone_h) > 14.0) {
+          fail(path, number, "LOCATION line has no valid latitude, longitude and time zone");
+        }
+        if (!parse_number(fields[9], loc.elevation_m)) loc.elevation_m = 0.0;
+        have_location = true;
+      } else if (key.rfind("COMMENTS", 0) == 0) {
+        std::smatch m;
+        if (std::regex_search(line, m, offset_comment)) {
+          double offset = 0.0;
+          if (!parse_number(m[1].str(), offset) || std::abs(offset) > 1.0) {
+            fail(path, number, "unreadable Irradiance Time Offset");
+          }
+          file.hours_in_utc = true;  // PVGIS writes UTC hours with this comment
+          file.irradiance_time_offset_h = offset;
+        }
+      } else if (key == "DATA PERIODS") {
+        in_data = true;
+      }
+      continue;
+    }
+    if (fields.size() < 16) fail(path, number, "data record has fewer than 16 fields");
+    double year, month, day, hour;
+    if (!parse_number(fields[0], year) || !parse_number(fields[1], month) || !parse_number(fields[2], day) ||
+        !parse_number(fields[3], hour) || month < 1 || month > 12 || day < 1 || hour < 1 || hour > 24) {
+      fail(path, number, "data record has no valid date and hour");
+    }
+    EpwRecord r;
+    r.year = static_cast<int>(year);
+    r.month = static_cast<int>(month);
+    r.day = static_cast<int>(day);
+    r.hour = static_cast<int>(hour);
+    if (r.day > days_in_month(r.year, r.month)) fail(path, number, "data record has a day beyond its month");
+    r.global_horizontal = solar_value(fields[13], file.missing_solar_values);
+    r.direct_normal = solar_value(fields[14], file.missing_solar_values);
+    r.diffuse_horizontal = solar_value(fields[15], file.missing_solar_values);
+    file.records.push_back(r);
+  }
+  if (!have_location) throw Error(path + ": not an EPW file (no LOCATION line)");
+  if (file.records.empty()) throw Error(path + ": EPW file has no data records");
+  const double zone_h = file.hours_in_utc ? 0.0 : file.location.time_zone_h;
+  for (EpwRecord& r : file.records) {
+    const double hours = r.hour + file.irradiance_time_offset_h - zone_h;
+    r.time_utc = static_cast<double>(days_from_civil(CivilDate{r.year, r.month, r.day})) * 86400.0 + hours * 3600.0;
+  }
+  return file;
+}
+
+}  // namespace skyview

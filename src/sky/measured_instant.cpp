@@ -1,0 +1,54 @@
+// Measured-data skies: normalise the diffuse distribution to the measured DHI.
+#include "measured_instant.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "skyview/error.h"
+
+namespace skyview {
+
+MeasuredInstant::MeasuredInstant(const SkyConditions& c, bool uniform, const perez::Parameters& shape, double dhi,
+                                 double dni)
+    : SkyInstant(c.sun_zenith, c.sun_azimuth), uniform_(uniform), p_(shape), dni_(dni) {
+  if (dhi <= 0.0) return;
+  if (uniform_) {
+    scale_ = dhi / std::numbers::pi;
+    return;
+  }
+  // The Perez form is relative: scale it so ∫ L cos θ dΩ equals the measured DHI.
+  scale_ = 1.0;
+  scale_ = dhi / diffuse_horizontal(64);
+}
+
+double MeasuredInstant::radiance(double theta, double gamma) const {
+  if (scale_ == 0.0 || theta > std::numbers::pi / 2) return 0.0;
+  return uniform_ ? scale_ : scale_ * perez::relative_radiance(p_, theta, gamma);
+}
+
+void MeasuredInstant::tabulate(std::span<const double> thetas, std::span<const double> gammas, float* out) const {
+  const std::size_t ng = gammas.size();
+  std::vector<double> along_gamma(ng, 1.0);
+  if (!uniform_) {
+    for (std::size_t j = 0; j < ng; ++j) along_gamma[j] = perez::relative_radiance(p_, 0.0, gammas[j]);
+  }
+  // relative_radiance(θ, γ) = g(θ)·f(γ) = relative(θ, 0)·relative(0, γ) / relative(0, 0).
+  const double origin = uniform_ ? 1.0 : perez::relative_radiance(p_, 0.0, 0.0);
+  for (std::size_t i = 0; i < thetas.size(); ++i) {
+    const double along_theta = uniform_ ? scale_ : scale_ * perez::relative_radiance(p_, thetas[i], 0.0) / origin;
+    for (std::size_t j = 0; j < ng; ++j) out[i * ng + j] = static_cast<float>(along_theta * along_gamma[j]);
+  }
+}
+
+double measured_or_zero(double v) { return std::isfinite(v) ? std::max(v, 0.0) : 0.0; }
+
+void require_measured(const SkyConditions& c, const char* model) {
+  if (!std::isfinite(c.diffuse_horizontal) || !std::isfinite(c.direct_normal)) {
+    throw Error(std::string(model) + " sky needs measured diffuse horizontal and direct normal irradiance");
+  }
+}
+
+}  // namespace skyview

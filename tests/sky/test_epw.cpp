@@ -1,0 +1,72 @@
+// EPW reading, including the PVGIS file's quirks and UTC convention.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "sky_test_support.h"
+#include "skyview/civil_time.h"
+#include "skyview/epw.h"
+#include "skyview/error.h"
+
+namespace skyview {
+namespace {
+
+TEST(Epw, ReadsTmy3WithMidHourLocalStandardTime) {
+  SKYVIEW_REQUIRE_SHARED(path, "weather/chicago.epw");
+  const EpwFile f = read_epw(path);
+  EXPECT_EQ(f.records.size(), 8760u);
+  EXPECT_NEAR(f.location.latitude_deg, 41.98, 1e-6);
+  EXPECT_NEAR(f.location.longitude_deg, -87.92, 1e-6);
+  EXPECT_EQ(f.location.time_zone_h, -6.0);
+  EXPECT_FALSE(f.hours_in_utc);
+  // Hour 1 of 1 January covers 00:00-01:00 CST: mid-hour 00:30 CST = 06:30 UTC.
+  const EpwRecord& r = f.records.front();
+  EXPECT_NEAR(r.time_utc, days_from_civil(CivilDate{r.year, 1, 1}) * 86400.0 + 6.5 * 3600.0, 1e-6);
+  double ghi = 0;
+  for (const auto& rec : f.records) ghi += rec.global_horizontal;
+  EXPECT_GT(ghi / 1000, 1200);  // kWh/m² per year, Chicago ≈ 1.3–1.5 MWh/m²
+  EXPECT_LT(ghi / 1000, 1700);
+}
+
+TEST(Epw, ReadsPvgisQuirksAndUtcOffset) {
+  SKYVIEW_REQUIRE_SHARED(path, "weather/pvgis_tmy_45N_8E.epw");
+  const EpwFile f = read_epw(path);
+  EXPECT_EQ(f.records.size(), 8760u);
+  EXPECT_TRUE(f.hours_in_utc);
+  EXPECT_NEAR(f.irradiance_time_offset_h, -0.8239, 1e-12);
+  EXPECT_EQ(f.location.city, "unknown");
+  EXPECT_NEAR(f.location.latitude_deg, 45.0, 1e-9);
+  EXPECT_EQ(f.missing_solar_values, 0);
+  // EPW hour 1 of 2018-01-01 holds the record stamped 00:00 UTC, irradiance at 00:10:34 UTC.
+  const EpwRecord& r = f.records.front();
+  EXPECT_EQ(r.year, 2018);
+  EXPECT_NEAR(r.time_utc, days_from_civil(CivilDate{2018, 1, 1}) * 86400.0 + 0.1761 * 3600.0, 1e-3);
+  // Years change from month to month; the reader keeps each record's own.
+  bool other_year = false;
+  for (const auto& rec : f.records) other_year |= rec.year != 2018;
+  EXPECT_TRUE(other_year);
+}
+
+TEST(Epw, BadInputIsOneLineError) {
+  const auto dir = std::filesystem::temp_directory_path() / "skyview_epw_test";
+  std::filesystem::create_directories(dir);
+  const std::string bad = (dir / "bad.epw").string();
+  {
+    std::ofstream out(bad);
+    out << "LOCATION,x,-,x,x,0,north,8.0,1,250\nDATA PERIODS,1,1,Data,Sunday,1/1,12/31\n";
+  }
+  try {
+    read_epw(bad);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("LOCATION"), std::string::npos);
+  }
+  EXPECT_THROW(read_epw((dir / "missing.epw").string()), Error);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace skyview
