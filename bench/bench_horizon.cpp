@@ -15,7 +15,10 @@ const skyview::Terrain& city(int size) {
   static std::map<int, skyview::Terrain> cache;
   auto it = cache.find(size);
   if (it == cache.end()) {
-    it = cache.emplace(size, skyview::rasterize(skyview::synthetic_city(1), size, size, skyview::local_grid(size, size, 1.0))).first;
+    it = cache
+             .emplace(size,
+                      skyview::rasterize(skyview::synthetic_city(1), size, size, skyview::local_grid(size, size, 1.0)))
+             .first;
   }
   return it->second;
 }
@@ -35,7 +38,8 @@ void run(benchmark::State& state, const std::string& method, skyview::HorizonPar
     benchmark::DoNotOptimize(field.upper.data());
   }
   const double cell_directions = static_cast<double>(t.width()) * t.height() * p.directions;
-  state.counters["cell_dirs_per_s"] = benchmark::Counter(cell_directions, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["cell_dirs_per_s"] =
+      benchmark::Counter(cell_directions, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["cells"] = static_cast<double>(t.width()) * t.height();
 }
 

@@ -1,9 +1,9 @@
 // The ray-cast reference. The terrain becomes a triangle mesh over cell centres: each quad of
-// four valid centres is split into four triangles around a centre vertex at the bilinear value
-// there, so the mesh is linear along grid lines exactly as the march and sweep read it, and
-// close to bilinear inside; a quad with one nodata corner keeps the triangle of the other three,
-// one with more is left open (nodata never occludes). The mesh sits in the ground frame at the
-// raster centre. Per cell
+// four valid centres is split along its lower diagonal, so the mesh is linear along grid lines,
+// exactly as the march and the sweep read it, and its creases inside a quad are valleys, so no
+// ray finds a higher point inside a quad than on its edges: all methods see one surface. A quad
+// with one nodata corner keeps the triangle of the other three; one with more is left open
+// (nodata never occludes). The mesh sits in the ground frame at the raster centre. Per cell
 // and direction, the horizon is found by bisecting the elevation angle with occlusion rays
 // (a heightfield seen from its surface is blocked below the horizon and open above it); the
 // svf is also estimated directly by stratified cosine-weighted hemisphere sampling, with its
@@ -39,7 +39,8 @@ using ScenePtr = std::unique_ptr<RTCSceneTy, SceneDeleter>;
 // and compute() turns it into a skyview::Error after building the scene.
 void embree_error(void* user, RTCError code, const char* message) {
   auto* first = static_cast<std::string*>(user);
-  if (first->empty()) first->assign("Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : ""));
+  if (first->empty())
+    first->assign("Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : ""));
 }
 
 // Vertices in metres east/north of the buffer's first cell and height relative to the base.
@@ -51,38 +52,36 @@ class TerrainMesh {
     scene_.reset(rtcNewScene(device));
     rtcSetSceneFlags(scene_.get(), RTC_SCENE_FLAG_ROBUST);
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    // Cell-centre vertices, then one vertex at the centre of every quad holding the bilinear
-    // value there (the mean of its corners).
-    const std::size_t cell_vertices = static_cast<std::size_t>(w) * h;
-    const std::size_t quads = static_cast<std::size_t>(std::max(0, w - 1)) * std::max(0, h - 1);
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                          3 * sizeof(float), cell_vertices + quads));
-    auto put = [&](std::size_t i, double col, double row, double z) {
-      v[3 * i + 0] = static_cast<float>(j_.a * col + j_.b * row);
-      v[3 * i + 1] = static_cast<float>(j_.c * col + j_.d * row);
-      v[3 * i + 2] = static_cast<float>(sign * z);
-      extent_ = std::max({extent_, std::abs(double(v[3 * i])), std::abs(double(v[3 * i + 1])), std::abs(z)});
-    };
+                                                          3 * sizeof(float), static_cast<std::size_t>(w) * h));
     for (int r = 0; r < h; ++r) {
       for (int c = 0; c < w; ++c) {
+        const std::size_t i = t.heights.index(c, r);
         const float z = t.heights(c, r);
-        put(t.heights.index(c, r), c, r, std::isnan(z) ? 0.0 : z);
+        v[3 * i + 0] = static_cast<float>(j_.a * c + j_.b * r);
+        v[3 * i + 1] = static_cast<float>(j_.c * c + j_.d * r);
+        v[3 * i + 2] = std::isnan(z) ? 0.0f : static_cast<float>(sign * z);
+        extent_ = std::max({extent_, std::abs(double(v[3 * i])), std::abs(double(v[3 * i + 1])), std::abs(double(z))});
       }
     }
     std::vector<unsigned> idx;
-    idx.reserve(quads * 12);
+    idx.reserve(static_cast<std::size_t>(w) * h * 6);
     for (int r = 0; r + 1 < h; ++r) {
       for (int c = 0; c + 1 < w; ++c) {
         const unsigned a = static_cast<unsigned>(t.heights.index(c, r)), b = a + 1;
         const unsigned d = static_cast<unsigned>(t.heights.index(c, r + 1)), e = d + 1;
-        const unsigned m = static_cast<unsigned>(cell_vertices + static_cast<std::size_t>(r) * (w - 1) + c);
         const bool va = t.valid(c, r), vb = t.valid(c + 1, r), vd = t.valid(c, r + 1), ve = t.valid(c + 1, r + 1);
         const int valid = va + vb + vd + ve;
-        put(m, c + 0.5, r + 0.5,
-            valid == 4 ? 0.25 * (double(t.heights(c, r)) + t.heights(c + 1, r) + t.heights(c, r + 1) + t.heights(c + 1, r + 1))
-                       : 0.0);
         if (valid == 4) {
-          idx.insert(idx.end(), {a, b, m, b, e, m, e, d, m, d, a, m});
+          // Split along the lower diagonal (in this mesh's sign): the crease is a valley, so along
+          // any straight line the surface peaks on the grid lines, where every method samples it.
+          const double ae = sign * (double(t.heights(c, r)) + t.heights(c + 1, r + 1));
+          const double bd = sign * (double(t.heights(c + 1, r)) + t.heights(c, r + 1));
+          if (ae <= bd) {
+            idx.insert(idx.end(), {a, b, e, a, e, d});
+          } else {
+            idx.insert(idx.end(), {a, b, d, b, e, d});
+          }
         } else if (valid == 3) {  // the valid half; nodata never occludes
           if (!va) idx.insert(idx.end(), {b, e, d});
           if (!vb) idx.insert(idx.end(), {a, e, d});
@@ -117,7 +116,8 @@ class TerrainMesh {
     // lets the ray slip under the surface. The eye's lift alone keeps it off its own triangles.
     ray.tnear = 0.0f;
     // The search radius is a ground distance: a steep ray may travel farther before it is reached.
-    ray.tfar = std::isinf(range) ? std::numeric_limits<float>::infinity() : static_cast<float>(range / std::max(ce, 1e-9));
+    ray.tfar =
+        std::isinf(range) ? std::numeric_limits<float>::infinity() : static_cast<float>(range / std::max(ce, 1e-9));
     ray.mask = 0xFFFFFFFFu;
     rtcOccluded1(scene_.get(), &context, &ray);
     return ray.tfar < 0.0f;
@@ -150,9 +150,7 @@ class RaycastEngine final : public HorizonEngine {
             {"MC_RAYS_PER_CELL", std::to_string(p_.rays)},
             {"BISECTION_STEPS", std::to_string(kBisections)}};
   }
-  double radius() const override {
-    return p_.radius == 0.0 ? std::numeric_limits<double>::infinity() : p_.radius;
-  }
+  double radius() const override { return p_.radius == 0.0 ? std::numeric_limits<double>::infinity() : p_.radius; }
 
   void compute(const Terrain& terrain, const Window& window, HorizonField& out,
                ProgressCounter& progress) const override {
@@ -167,7 +165,8 @@ class RaycastEngine final : public HorizonEngine {
     if (!embree_failure.empty()) throw Error(embree_failure);
     out.resize(window.cols, window.rows, p_.directions, p_.lower);
     if (p_.rays > 0) {
-      out.svf_direct.assign(static_cast<std::size_t>(window.cols) * window.rows, std::numeric_limits<float>::quiet_NaN());
+      out.svf_direct.assign(static_cast<std::size_t>(window.cols) * window.rows,
+                            std::numeric_limits<float>::quiet_NaN());
       out.svf_stderr.assign(out.svf_direct.size(), std::numeric_limits<float>::quiet_NaN());
     }
     const int n = p_.directions;
@@ -206,8 +205,7 @@ class RaycastEngine final : public HorizonEngine {
  private:
   static constexpr int kBisections = 24;  // 180° / 2^24 ≈ 1e-5 degrees
 
-  static double bisect_horizon(const TerrainMesh& mesh, int col, int row, double z, double s, double c,
-                               double range) {
+  static double bisect_horizon(const TerrainMesh& mesh, int col, int row, double z, double s, double c, double range) {
     double lo = -0.5 * M_PI, hi = 0.5 * M_PI;  // lo is blocked (or the nadir), hi is open
     if (!mesh.occluded(col, row, z, s, c, 0.0, range)) {
       hi = 0.0;  // the horizontal is open: the horizon is at or below it

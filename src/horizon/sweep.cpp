@@ -78,10 +78,10 @@ void sweep_direction(const Terrain& terrain, const Window& window, double azimut
   const int major_n = by_rows ? H : W, minor_n = by_rows ? W : H;
   const double k = by_rows ? pc / pr : pr / pc;  // minor-axis drift of a line per major step
   const double t_major = by_rows ? t_row : t_col, t_minor = by_rows ? t_col : t_row;
-  const bool ahead_is_low = by_rows ? pr < 0 : pc < 0;  // the viewer looks towards index 0
-  const int toward = ahead_is_low ? -1 : 1;             // major index change per step ahead
+  const bool ahead_is_low = by_rows ? pr < 0 : pc < 0;             // the viewer looks towards index 0
+  const int toward = ahead_is_low ? -1 : 1;                        // major index change per step ahead
   const double t_step = std::abs(t_major) + k * toward * t_minor;  // along-ray distance per step
-  const double k_step = k * toward;  // minor drift per step ahead
+  const double k_step = k * toward;                                // minor drift per step ahead
   const long max_drift = static_cast<long>(std::ceil(std::abs(k) * (major_n - 1))) + 1;
   const long m_min = -max_drift, lines = minor_n + 2 * max_drift + 2;
   std::vector<std::vector<HullPoint>> hulls(static_cast<std::size_t>(lines));
@@ -153,7 +153,8 @@ void sweep_direction(const Terrain& terrain, const Window& window, double azimut
     }
     // This step's line samples wait kNearSteps steps before joining the hulls.
     auto& mine = pending[(step + kNearSteps + 1) % (kNearSteps + 1)];
-    const long m_first = static_cast<long>(std::ceil(-shift)), m_last = static_cast<long>(std::floor(minor_n - 1 - shift));
+    const long m_first = static_cast<long>(std::ceil(-shift)),
+               m_last = static_cast<long>(std::floor(minor_n - 1 - shift));
     for (long m = m_first; m <= m_last; ++m) {
       const double x = m + shift;
       const double zs = height(major, x);

@@ -1,0 +1,61 @@
+#pragma once
+// Speed against error: runs horizon methods over a grid of their parameters, times them and
+// compares their svf and sky visibility with the ray-cast reference. `skyview bench` writes
+// the results as JSON, a markdown table and a time-against-error plot with the Pareto front.
+#include <nlohmann/json.hpp>
+
+#include <functional>
+
+#include <string>
+#include <vector>
+
+#include "skyview/horizon_engine.h"
+#include "skyview/sky_view.h"
+
+namespace skyview {
+
+struct BenchConfig {
+  std::string method;
+  HorizonParams params;
+  std::string label() const;
+};
+
+struct ErrorStats {
+  double rmse = 0, bias = 0, p99 = 0, max_abs = 0, share_above_0_01 = 0;
+  std::int64_t cells = 0;
+};
+
+// Statistics of (value - reference) over cells where both are valid.
+ErrorStats compare_to_reference(const Grid<float>& value, const Grid<float>& reference);
+
+struct BenchResult {
+  BenchConfig config;
+  double seconds = 0;  // median wall time: horizons + products
+  double cell_dirs_per_second = 0;
+  ErrorStats svf, sky_visibility;
+  bool pareto = false;  // no other result is both faster and more accurate (p99 svf)
+};
+
+struct BenchReference {
+  SkyViewProducts products;
+  double seconds = 0;
+  int directions = 0;
+};
+
+// The default grid: sampled (directions x samples), march and sweep (directions).
+std::vector<BenchConfig> default_bench_grid(const std::vector<std::string>& methods);
+
+BenchReference compute_reference(const Terrain& terrain, int directions);
+
+// Runs every config `repeats` times (median time); `on_result` is called after each.
+std::vector<BenchResult> run_bench(const Terrain& terrain, const std::vector<BenchConfig>& configs,
+                                   const BenchReference& reference, int repeats,
+                                   const std::function<void(const BenchResult&)>& on_result = {});
+
+void mark_pareto_front(std::vector<BenchResult>& results);
+nlohmann::json bench_to_json(const std::string& raster, const BenchReference& ref, const std::vector<BenchResult>& r);
+std::string bench_to_markdown(const std::string& raster, const BenchReference& ref, const std::vector<BenchResult>& r);
+// Log-log plot of time against p99 svf error, one colour per method, the Pareto front joined.
+void plot_bench(const std::string& png_path, const std::string& title, const std::vector<BenchResult>& results);
+
+}  // namespace skyview

@@ -1,0 +1,253 @@
+#include "skyview/method_benchmark.h"
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <iomanip>
+#include <map>
+#include <sstream>
+
+#include "skyview/error.h"
+
+namespace skyview {
+
+std::string BenchConfig::label() const {
+  std::ostringstream s;
+  s << method << " d=" << params.directions;
+  if (method == "sampled") s << " s=" << params.samples;
+  if (method == "sampled" || method == "march") s << " r=" << (params.radius == 0 ? 500 : params.radius);
+  return s.str();
+}
+
+ErrorStats compare_to_reference(const Grid<float>& value, const Grid<float>& reference) {
+  std::vector<double> abs_err;
+  abs_err.reserve(value.size());
+  ErrorStats e;
+  double sum2 = 0, sum = 0;
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    const double v = value.values()[i], r = reference.values()[i];
+    if (std::isnan(v) || std::isnan(r)) continue;
+    const double d = v - r;
+    sum += d;
+    sum2 += d * d;
+    abs_err.push_back(std::abs(d));
+    e.share_above_0_01 += std::abs(d) > 0.01;
+  }
+  e.cells = static_cast<std::int64_t>(abs_err.size());
+  if (abs_err.empty()) return e;
+  const double n = static_cast<double>(abs_err.size());
+  e.rmse = std::sqrt(sum2 / n);
+  e.bias = sum / n;
+  e.share_above_0_01 /= n;
+  const std::size_t k = std::min(abs_err.size() - 1, static_cast<std::size_t>(std::ceil(0.99 * n)) - 1);
+  std::nth_element(abs_err.begin(), abs_err.begin() + static_cast<std::ptrdiff_t>(k), abs_err.end());
+  e.p99 = abs_err[k];
+  e.max_abs = *std::max_element(abs_err.begin(), abs_err.end());
+  return e;
+}
+
+std::vector<BenchConfig> default_bench_grid(const std::vector<std::string>& methods) {
+  std::vector<BenchConfig> grid;
+  for (const auto& m : methods) {
+    if (m == "sampled") {
+      for (int d : {8, 16, 32}) {
+        for (int s : {8, 16, 32, 64}) {
+          BenchConfig c{m, {}};
+          c.params.directions = d;
+          c.params.samples = s;
+          grid.push_back(c);
+        }
+      }
+    } else if (m == "march" || m == "sweep") {
+      for (int d : {8, 16, 32, 64}) {
+        BenchConfig c{m, {}};
+        c.params.directions = d;
+        grid.push_back(c);
+      }
+    } else {
+      throw Error("bench: unknown method '" + m + "' (sampled, march, sweep)");
+    }
+  }
+  for (auto& c : grid) c.params.curvature = "off";  // the reference has no curvature
+  return grid;
+}
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+BenchReference compute_reference(const Terrain& terrain, int directions) {
+  HorizonParams p;
+  p.directions = directions;
+  p.rays = 0;
+  p.curvature = "off";
+  auto engine = make_horizon_engine("raycast", p);
+  HorizonField field;
+  ProgressCounter progress;
+  const auto t0 = std::chrono::steady_clock::now();
+  engine->compute(terrain, Window::whole(terrain), field, progress);
+  BenchReference ref;
+  ref.products = sky_view_products(terrain, Window::whole(terrain), field, engine->radius(), EdgeMode::open);
+  ref.seconds = seconds_since(t0);
+  ref.directions = directions;
+  return ref;
+}
+
+std::vector<BenchResult> run_bench(const Terrain& terrain, const std::vector<BenchConfig>& configs,
+                                   const BenchReference& reference, int repeats,
+                                   const std::function<void(const BenchResult&)>& on_result) {
+  std::vector<BenchResult> results;
+  for (const BenchConfig& config : configs) {
+    auto engine = make_horizon_engine(config.method, config.params);
+    std::vector<double> times;
+    SkyViewProducts products;
+    for (int i = 0; i < std::max(1, repeats); ++i) {
+      HorizonField field;
+      ProgressCounter progress;
+      const auto t0 = std::chrono::steady_clock::now();
+      engine->compute(terrain, Window::whole(terrain), field, progress);
+      products = sky_view_products(terrain, Window::whole(terrain), field, engine->radius(), EdgeMode::open);
+      times.push_back(seconds_since(t0));
+    }
+    std::sort(times.begin(), times.end());
+    BenchResult r;
+    r.config = config;
+    r.seconds = times[times.size() / 2];
+    r.cell_dirs_per_second =
+        static_cast<double>(terrain.width()) * terrain.height() * config.params.directions / r.seconds;
+    r.svf = compare_to_reference(products.svf, reference.products.svf);
+    r.sky_visibility = compare_to_reference(products.sky_visibility, reference.products.sky_visibility);
+    results.push_back(r);
+    if (on_result) on_result(r);
+  }
+  mark_pareto_front(results);
+  return results;
+}
+
+void mark_pareto_front(std::vector<BenchResult>& results) {
+  for (auto& r : results) {
+    r.pareto = std::none_of(results.begin(), results.end(), [&](const BenchResult& o) {
+      return &o != &r && o.seconds <= r.seconds && o.svf.p99 <= r.svf.p99 &&
+             (o.seconds < r.seconds || o.svf.p99 < r.svf.p99);
+    });
+  }
+}
+
+namespace {
+
+nlohmann::json stats_json(const ErrorStats& e) {
+  return {{"rmse", e.rmse},
+          {"bias", e.bias},
+          {"p99_abs", e.p99},
+          {"max_abs", e.max_abs},
+          {"share_above_0_01", e.share_above_0_01},
+          {"cells", e.cells}};
+}
+
+}  // namespace
+
+nlohmann::json bench_to_json(const std::string& raster, const BenchReference& ref, const std::vector<BenchResult>& rs) {
+  nlohmann::json j;
+  j["raster"] = raster;
+  j["reference"] = {{"method", "raycast"}, {"directions", ref.directions}, {"seconds", ref.seconds}};
+  for (const auto& r : rs) {
+    j["results"].push_back({{"method", r.config.method},
+                            {"label", r.config.label()},
+                            {"directions", r.config.params.directions},
+                            {"samples", r.config.params.samples},
+                            {"radius_m", r.config.params.radius},
+                            {"seconds", r.seconds},
+                            {"cell_directions_per_second", r.cell_dirs_per_second},
+                            {"pareto", r.pareto},
+                            {"svf", stats_json(r.svf)},
+                            {"sky_visibility", stats_json(r.sky_visibility)}});
+  }
+  return j;
+}
+
+std::string bench_to_markdown(const std::string& raster, const BenchReference& ref,
+                              const std::vector<BenchResult>& rs) {
+  std::ostringstream s;
+  s << "Raster `" << raster << "`; reference: raycast, " << ref.directions << " directions (" << std::fixed
+    << std::setprecision(1) << ref.seconds << " s). Errors are value − reference over all valid cells.\n\n";
+  s << "| method | time (s) | M cell-dirs/s | svf RMSE | svf bias | svf p99 | svf max | share >0.01 | vis p99 | Pareto "
+       "|\n";
+  s << "|---|---:|---:|---:|---:|---:|---:|---:|---:|:---:|\n";
+  for (const auto& r : rs) {
+    s << "| " << r.config.label() << " | " << std::setprecision(3) << r.seconds << " | " << std::setprecision(1)
+      << r.cell_dirs_per_second / 1e6 << " | " << std::setprecision(4) << r.svf.rmse << " | " << r.svf.bias << " | "
+      << r.svf.p99 << " | " << r.svf.max_abs << " | " << std::setprecision(3) << r.svf.share_above_0_01 << " | "
+      << std::setprecision(4) << r.sky_visibility.p99 << " | " << (r.pareto ? "●" : "") << " |\n";
+  }
+  return s.str();
+}
+
+void plot_bench(const std::string& png_path, const std::string& title, const std::vector<BenchResult>& results) {
+  const int W = 900, H = 600, left = 90, right = 30, top = 50, bottom = 70;
+  cv::Mat img(H, W, CV_8UC3, cv::Scalar(255, 255, 255));
+  double tmin = 1e30, tmax = 0, emin = 1e30, emax = 0;
+  for (const auto& r : results) {
+    tmin = std::min(tmin, r.seconds), tmax = std::max(tmax, r.seconds);
+    emin = std::min(emin, std::max(r.svf.p99, 1e-5)), emax = std::max(emax, std::max(r.svf.p99, 1e-5));
+  }
+  const double lt0 = std::floor(std::log10(tmin)), lt1 = std::ceil(std::log10(tmax) + 1e-9);
+  const double le0 = std::floor(std::log10(emin)), le1 = std::ceil(std::log10(emax) + 1e-9);
+  auto px = [&](double t, double e) {
+    const double x = left + (std::log10(t) - lt0) / std::max(1e-9, lt1 - lt0) * (W - left - right);
+    const double y =
+        H - bottom - (std::log10(std::max(e, 1e-5)) - le0) / std::max(1e-9, le1 - le0) * (H - top - bottom);
+    return cv::Point(static_cast<int>(x), static_cast<int>(y));
+  };
+  const cv::Scalar grey(200, 200, 200), black(0, 0, 0);
+  for (double d = lt0; d <= lt1; ++d) {
+    cv::line(img, px(std::pow(10, d), std::pow(10, le0)), px(std::pow(10, d), std::pow(10, le1)), grey);
+    std::ostringstream l;
+    l << std::pow(10, d) << " s";
+    cv::putText(img, l.str(), px(std::pow(10, d), std::pow(10, le0)) + cv::Point(-20, 22), cv::FONT_HERSHEY_SIMPLEX,
+                0.45, black);
+  }
+  for (double d = le0; d <= le1; ++d) {
+    cv::line(img, px(std::pow(10, lt0), std::pow(10, d)), px(std::pow(10, lt1), std::pow(10, d)), grey);
+    std::ostringstream l;
+    l << std::pow(10, d);
+    cv::putText(img, l.str(), px(std::pow(10, lt0), std::pow(10, d)) + cv::Point(-75, 5), cv::FONT_HERSHEY_SIMPLEX,
+                0.45, black);
+  }
+  cv::putText(img, title, cv::Point(left, 30), cv::FONT_HERSHEY_SIMPLEX, 0.6, black);
+  cv::putText(img, "time per run (log)", cv::Point(W / 2 - 60, H - 20), cv::FONT_HERSHEY_SIMPLEX, 0.5, black);
+  cv::putText(img, "p99 |svf error|", cv::Point(5, top - 10), cv::FONT_HERSHEY_SIMPLEX, 0.5, black);
+  const std::map<std::string, cv::Scalar> colour{
+      {"sampled", cv::Scalar(40, 120, 230)}, {"march", cv::Scalar(60, 170, 60)}, {"sweep", cv::Scalar(200, 60, 60)}};
+  std::vector<const BenchResult*> front;
+  for (const auto& r : results) {
+    if (r.pareto) front.push_back(&r);
+  }
+  std::sort(front.begin(), front.end(), [](auto* a, auto* b) { return a->seconds < b->seconds; });
+  for (std::size_t i = 1; i < front.size(); ++i) {
+    cv::line(img, px(front[i - 1]->seconds, front[i - 1]->svf.p99), px(front[i]->seconds, front[i]->svf.p99),
+             cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  }
+  for (const auto& r : results) {
+    const auto it = colour.find(r.config.method);
+    const cv::Scalar c = it == colour.end() ? black : it->second;
+    cv::circle(img, px(r.seconds, r.svf.p99), r.pareto ? 6 : 4, c, cv::FILLED, cv::LINE_AA);
+  }
+  int y = top + 10;
+  for (const auto& [name, c] : colour) {
+    cv::circle(img, cv::Point(W - 140, y), 5, c, cv::FILLED, cv::LINE_AA);
+    cv::putText(img, name, cv::Point(W - 128, y + 5), cv::FONT_HERSHEY_SIMPLEX, 0.5, black);
+    y += 20;
+  }
+  cv::putText(img, "line: Pareto front", cv::Point(W - 160, y + 5), cv::FONT_HERSHEY_SIMPLEX, 0.45, black);
+  if (!cv::imwrite(png_path, img)) throw Error("cannot write the plot '" + png_path + "'");
+}
+
+}  // namespace skyview

@@ -1,0 +1,82 @@
+// skyview bench: speed against error of every horizon method on one raster.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "command.h"
+#include "skyview/error.h"
+#include "skyview/method_benchmark.h"
+#include "skyview/raster_io.h"
+
+namespace skyview::cli {
+namespace {
+
+std::vector<std::string> split_list(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  for (std::string item; std::getline(in, item, ',');) {
+    if (!item.empty()) out.push_back(item);
+  }
+  return out;
+}
+
+Runner setup(CLI::App& app) {
+  struct Options {
+    std::string input, methods = "sampled,march,sweep", out = "bench-out";
+    int band = 1, reference_directions = 64, repeat = 3;
+    double z_scale = 1.0;
+    bool overwrite = false, quiet = false;
+    int threads = 0;
+  };
+  auto o = std::make_shared<Options>();
+  app.add_option("input", o->input, "Elevation raster")->required();
+  app.add_option("--methods", o->methods, "Comma-separated methods")->capture_default_str();
+  app.add_option("--out", o->out, "Folder for bench.json, bench.md and bench.png")->capture_default_str();
+  app.add_option("--reference-directions", o->reference_directions, "Directions of the ray-cast reference")
+      ->capture_default_str()
+      ->check(CLI::Range(4, 4096));
+  app.add_option("--repeat", o->repeat, "Runs per configuration (median time)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100));
+  app.add_option("-b,--band", o->band, "Input band")->capture_default_str();
+  app.add_option("--z-scale", o->z_scale, "Vertical unit factor to metres")->capture_default_str();
+  app.add_flag("--overwrite", o->overwrite, "Replace existing result files");
+  app.add_flag("-q,--quiet", o->quiet, "No per-configuration lines on stderr");
+  app.add_option("--threads", o->threads, "Worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  app.footer(
+      "Times each method over a grid of its parameters and compares svf and sky visibility with the ray-cast "
+      "reference (RMSE, bias, 99th percentile, maximum, share of cells off by more than 0.01).");
+  return [o] {
+    ThreadLimit limit(o->threads);
+    const std::vector<std::string> names{"bench.json", "bench.md", "bench.png"};
+    std::filesystem::create_directories(o->out);
+    for (const auto& n : names) check_output_writable(o->out + "/" + n, o->overwrite);
+    ReadOptions ro;
+    ro.band = o->band;
+    ro.z_scale = o->z_scale;
+    const Terrain terrain = read_terrain(o->input, ro);
+    const auto grid = default_bench_grid(split_list(o->methods));
+    if (!o->quiet) std::fprintf(stderr, "reference: raycast with %d directions...\n", o->reference_directions);
+    const BenchReference ref = compute_reference(terrain, o->reference_directions);
+    if (!o->quiet) std::fprintf(stderr, "reference done in %.1f s\n", ref.seconds);
+    const auto results = run_bench(terrain, grid, ref, o->repeat, [&](const BenchResult& r) {
+      if (!o->quiet) {
+        std::fprintf(stderr, "%-28s %8.3f s  svf p99 %.4f  rmse %.4f\n", r.config.label().c_str(), r.seconds, r.svf.p99,
+                     r.svf.rmse);
+      }
+    });
+    const std::string name = std::filesystem::path(o->input).filename().string();
+    std::ofstream(o->out + "/bench.json") << bench_to_json(o->input, ref, results).dump(2) << "\n";
+    const std::string md = bench_to_markdown(name, ref, results);
+    std::ofstream(o->out + "/bench.md") << md;
+    plot_bench(o->out + "/bench.png", "skyview bench: " + name, results);
+    std::fputs(md.c_str(), stdout);
+    return 0;
+  };
+}
+
+const Registration reg("bench", "Speed against error of every horizon method, judged by the ray-cast reference", setup);
+
+}  // namespace
+}  // namespace skyview::cli
