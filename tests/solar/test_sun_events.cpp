@@ -103,3 +103,69 @@ TEST(SunEventsHybridShadowMaps, ReproducesThePapersRealTimes) {
   EXPECT_LT(worst, 3.0);
   EXPECT_LT(ours_total, software_total / 3.0);
 }
+
+// At the equator on an equinox the day is symmetric about the transit and lasts 12 h plus the
+// 2 x 0.833 deg of sun radius and refraction (6.7 min).
+TEST(SunEventsSymmetry, EquatorAtEquinox) {
+  Site equator;
+  const SunEvents e = sun_events({2024, 3, 20}, 0.0, equator);
+  ASSERT_EQ(e.kind, DayKind::normal);
+  const double morning = e.transit_utc - *e.sunrise_utc, afternoon = *e.sunset_utc - e.transit_utc;
+  EXPECT_NEAR(morning, afternoon, 5.0);
+  EXPECT_NEAR(e.day_length_h(), 12.0 + 2 * 0.83337 / 15.0, 0.01);
+  // Transit at 12:00 minus the equation of time (+7.4 min on 20 March 2024).
+  EXPECT_NEAR(local_seconds_of_day(e.transit_utc, 0), hms(12, 7, 26), 30.0);
+  EXPECT_NEAR(e.transit_elevation_deg, 90.0, 0.5);
+  for (double hours : {1.0, 3.0, 5.0}) {
+    const SunPosition am = solar_position(e.transit_utc - hours * 3600.0, equator);
+    const SunPosition pm = solar_position(e.transit_utc + hours * 3600.0, equator);
+    EXPECT_NEAR(am.zenith_deg, pm.zenith_deg, 0.01) << hours;
+    // The declination rises 0.016 deg an hour that day; near the zenith that small offset
+    // tilts the azimuth by up to 0.5 deg, and it is all the asymmetry left.
+    EXPECT_NEAR(am.azimuth_deg + pm.azimuth_deg, 360.0, 0.2) << hours;
+    EXPECT_NEAR(am.azimuth_deg, 90.0, 0.6) << hours;  // due east in the morning
+  }
+}
+
+TEST(SunEventsPolar, DayAndNightAt78North) {
+  Site svalbard;
+  svalbard.latitude_deg = 78.0;
+  svalbard.longitude_deg = 15.0;
+  const SunEvents june = sun_events({2024, 6, 21}, 7200.0, svalbard);
+  EXPECT_EQ(june.kind, DayKind::polar_day);
+  EXPECT_FALSE(june.sunrise_utc.has_value());
+  EXPECT_FALSE(june.sunset_utc.has_value());
+  EXPECT_EQ(june.day_length_h(), 24.0);
+  EXPECT_NEAR(june.transit_elevation_deg, 90.0 - 78.0 + 23.44, 0.1);
+  const SunEvents december = sun_events({2024, 12, 21}, 3600.0, svalbard);
+  EXPECT_EQ(december.kind, DayKind::polar_night);
+  EXPECT_EQ(december.day_length_h(), 0.0);
+  EXPECT_LT(december.transit_elevation_deg, 0.0);
+  // The transit is still an answer: local solar noon near 12:00 - 1 h of longitude + offset.
+  EXPECT_NEAR(local_seconds_of_day(december.transit_utc, 1), hms(12, 0, 0), 10 * 60.0);
+}
+
+TEST(SunEventsPolar, SouthernHemisphereIsReversed) {
+  Site antarctic;
+  antarctic.latitude_deg = -78.0;
+  EXPECT_EQ(sun_events({2024, 6, 21}, 0.0, antarctic).kind, DayKind::polar_night);
+  EXPECT_EQ(sun_events({2024, 12, 21}, 0.0, antarctic).kind, DayKind::polar_day);
+  Site pole;
+  pole.latitude_deg = 90.0;
+  EXPECT_EQ(sun_events({2024, 6, 21}, 0.0, pole).kind, DayKind::polar_day);
+}
+
+// Around the March equinox the right ascension passes 360 -> 0; the report's "limit to 0..1"
+// would make the sunrise jump there. Consecutive sunrises must change smoothly.
+TEST(SunEventsContinuity, SunriseSmoothAcrossRightAscensionWrap) {
+  Site site;
+  site.latitude_deg = 45.0;
+  double rise[11];
+  for (int i = 0; i < 11; ++i) rise[i] = local_seconds_of_day(*sun_events({2024, 3, 15 + i}, 0.0, site).sunrise_utc, 0);
+  for (int i = 1; i < 11; ++i) {
+    EXPECT_NEAR(rise[i] - rise[i - 1], -112.0, 3.0) << "March " << 15 + i;  // 1.6 min of day length + EOT
+    if (i > 1) {
+      EXPECT_NEAR(rise[i] - rise[i - 1], rise[i - 1] - rise[i - 2], 1.0) << "March " << 15 + i;
+    }
+  }
+}

@@ -1,0 +1,84 @@
+// `skyview sun` end to end: the SPA test case in CSV, events, help, and one-line errors.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+namespace {
+
+struct SunRun {
+  int exit_code;
+  std::string out, err;
+};
+
+SunRun run_sun(const std::string& args) {
+  const std::string base = ::testing::TempDir() + "/skyview_sun_" + std::to_string(::getpid());
+  const std::string cmd = std::string(SKYVIEW_EXE) + " sun " + args + " >" + base + ".out 2>" + base + ".err";
+  const int status = std::system(cmd.c_str());
+  auto slurp = [](const std::string& path) {
+    std::string all;
+    if (FILE* f = std::fopen(path.c_str(), "r")) {
+      char buffer[4096];
+      for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, f)) > 0;) all.append(buffer, n);
+      std::fclose(f);
+    }
+    return all;
+  };
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), slurp(base + ".out"), slurp(base + ".err")};
+}
+
+const char* kGolden =
+    "--lat 39.742476 --lon -105.1786 --elevation 1830.14 --pressure 820 --temperature 11 --delta-t 67 ";
+
+}  // namespace
+
+TEST(SunCli, CsvOfTheSpaTestCase) {
+  const SunRun r = run_sun(std::string(kGolden) + "--time 2003-10-17T12:30:30-07:00 --csv --facade-azimuth 180");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("time_utc,zenith_deg,azimuth_deg,elevation_deg,", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find("\n2003-10-17T19:30:30Z,50.111622,194.340241,39.888378,2003-10-17T12:30:30-07:00,"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find(",hsa_deg,vsa_deg,sun_on_facade"), std::string::npos);
+}
+
+TEST(SunCli, PeriodRowsAndEvents) {
+  SunRun r = run_sun(
+      "--lat 37.98 --lon 23.73 --from '2024-06-21T00:00' --to '2024-06-22T00:00' --step 1h "
+      "--tz Europe/Athens --csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1 + 25);
+  EXPECT_NE(r.out.find("2024-06-20T21:00:00Z"), std::string::npos);  // midnight +03:00
+  r = run_sun(std::string(kGolden) + "--time 2003-10-17T12:30:30-07:00 --events --csv --convention spa");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("2003-10-17T06:12:43-07:00"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("2003-10-16T17:20:19-07:00"), std::string::npos) << r.out;
+  r = run_sun("--lat 78 --lon 15 --time 2024-12-21T12:00Z --events");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("polar_night"), std::string::npos) << r.out;
+}
+
+TEST(SunCli, HelpWorks) {
+  const SunRun r = run_sun("--help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("--facade-azimuth"), std::string::npos);
+}
+
+TEST(SunCli, BadInputIsOneLine) {
+  for (const char* args :
+       {"--lat 95 --lon 0 --time 2024-01-01T00:00Z", "--lat 45 --lon 0 --time 7000-01-01T00:00Z",
+        "--lat 45 --lon 0 --time '2024-01-01T00:00 Mars/Olympus'", "--lat x --lon 0 --time 2024-01-01Z",
+        "--lat 45 --lon 0", "--lat 45 --lon 0 --from 2024-01-02Z --to 2024-01-01Z",
+        "--lat 45 --lon 0 --time 2024-01-01Z --step 0h --from 2024-01-01Z",
+        "--lat 45 --lon 0 --from 2024-01-01Z --to 2024-01-02Z --step 1y"}) {
+    const SunRun r = run_sun(args);
+    EXPECT_EQ(r.exit_code, 1) << args;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+    EXPECT_NE(r.err.find("skyview sun: error: "), std::string::npos) << r.err;
+  }
+}
