@@ -1,10 +1,12 @@
 // skyview sun: where the sun is (NREL SPA) at one time or over a period, or the sunrise,
 // transit and sunset of each day; optional façade shadow angles and tilted-surface incidence.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "command.h"
 #include "skyview/civil_time.h"
@@ -110,8 +112,18 @@ int print_positions(const Options& o, const Site& site, const Period& p) {
                 "elevation", "decl", "eot_min", "dT_s", slope ? "  incidence" : "", facade ? "      hsa      vsa" : "");
   }
   const long rows = static_cast<long>(std::floor((p.last - p.first) / p.step + 1e-9)) + 1;
+  // Zone offsets are looked up a chunk at a time: one switch of the C library's zone each.
+  constexpr long kChunk = 4096;
+  std::vector<double> times, offsets;
   for (long i = 0; i < rows; ++i) {
     const double t = p.first + static_cast<double>(i) * p.step;
+    if (i % kChunk == 0) {
+      times.clear();
+      for (long j = i; j < std::min(rows, i + kChunk); ++j) times.push_back(p.first + static_cast<double>(j) * p.step);
+      offsets = p.clock.zone.empty() ? std::vector<double>(times.size(), p.clock.fixed_offset_s)
+                                     : utc_offsets_s(p.clock.zone, times);
+    }
+    const std::string local_time = format_iso_local(t, offsets[i % kChunk]);
     const SunPosition s = solar_position(t, site);
     std::string extra_csv, extra_text;
     if (slope) {
@@ -131,11 +143,11 @@ int print_positions(const Options& o, const Site& site, const Period& p) {
     }
     if (o.csv) {
       std::printf("%s,%.6f,%.6f,%.6f,%s,%.6f,%.6f,%.8f,%.4f,%.2f%s\n", format_iso_utc(t).c_str(), s.zenith_deg,
-                  s.azimuth_deg, s.elevation_deg, p.clock.format(t).c_str(), s.declination_deg, s.right_ascension_deg,
+                  s.azimuth_deg, s.elevation_deg, local_time.c_str(), s.declination_deg, s.right_ascension_deg,
                   s.earth_sun_distance_au, s.equation_of_time_min, s.delta_t_s, extra_csv.c_str());
     } else {
       std::printf("%-21s %-26s %10.5f %10.5f %10.5f %9.4f %8.3f %8.2f%s\n", format_iso_utc(t).c_str(),
-                  p.clock.format(t).c_str(), s.zenith_deg, s.azimuth_deg, s.elevation_deg, s.declination_deg,
+                  local_time.c_str(), s.zenith_deg, s.azimuth_deg, s.elevation_deg, s.declination_deg,
                   s.equation_of_time_min, s.delta_t_s, extra_text.c_str());
     }
   }

@@ -4,6 +4,7 @@
 // of the proleptic Gregorian calendar. Zone rules come from the system tz database
 // (/usr/share/zoneinfo, Debian package tzdata).
 #include <string>
+#include <vector>
 
 #include "skyview/civil_time.h"
 
@@ -33,6 +34,10 @@ void check_time_zone(const std::string& zone);
 
 // UTC offset in seconds of IANA `zone` at a Unix time (DST included).
 double utc_offset_s(const std::string& zone, double unix_time_utc);
+
+// The same for many instants at once: one switch of the C library's zone for the whole batch
+// (a single utc_offset_s call re-reads the zone file, ~0.1 ms).
+std::vector<double> utc_offsets_s(const std::string& zone, const std::vector<double>& unix_times_utc);
 
 // The instant of a wall-clock time in `zone` (earlier one when ambiguous; throws when skipped).
 double unix_from_local(const std::string& zone, const CivilDateTime& local);

@@ -9,6 +9,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "skyview/error.h"
 #include "skyview/time_parse.h"
@@ -79,6 +80,20 @@ double utc_offset_s(const std::string& zone, double unix_time_utc) {
   ScopedTz scoped(zone);
   if (!::localtime_r(&t, &local)) throw Error("cannot convert " + std::to_string(unix_time_utc) + " to zone " + zone);
   return static_cast<double>(local.tm_gmtoff);
+}
+
+std::vector<double> utc_offsets_s(const std::string& zone, const std::vector<double>& unix_times_utc) {
+  std::vector<double> offsets(unix_times_utc.size(), 0.0);
+  if (is_utc(zone) || unix_times_utc.empty()) return offsets;
+  std::lock_guard<std::mutex> lock(tz_mutex());
+  ScopedTz scoped(zone);
+  for (std::size_t i = 0; i < unix_times_utc.size(); ++i) {
+    const std::time_t t = static_cast<std::time_t>(std::floor(unix_times_utc[i]));
+    std::tm local{};
+    if (!::localtime_r(&t, &local)) throw Error("cannot convert a time to zone " + zone);
+    offsets[i] = static_cast<double>(local.tm_gmtoff);
+  }
+  return offsets;
 }
 
 double unix_from_local(const std::string& zone, const CivilDateTime& local) {

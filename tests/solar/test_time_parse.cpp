@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "skyview/civil_time.h"
 #include "skyview/error.h"
@@ -60,6 +61,8 @@ TEST(TimeParse, IanaZonesWithDaylightSaving) {
   // 03:30 never happens on 2024-03-31 in Athens.
   EXPECT_THROW(parse_time("2024-03-31T03:30 Europe/Athens"), Error);
   EXPECT_EQ(utc_offset_s("Asia/Kolkata", 0.0), 5.5 * 3600.0);
+  const std::vector<double> offsets = utc_offsets_s("Europe/Athens", {winter.unix_utc, summer.unix_utc});
+  EXPECT_EQ(offsets, (std::vector<double>{7200.0, 10800.0}));
 }
 
 TEST(TimeParse, ExtremeYears) {
