@@ -20,10 +20,10 @@ std::vector<ExposureStep> regular_steps(const Site& site, double from_utc, doubl
 // with one, the file is read as a typical year repeated over every calendar year the period
 // touches, and records whose instant falls in [from, to) are kept (a missing 29 February stays
 // missing). Throws skyview::Error when no record falls in the period.
-struct Period {
+struct TimePeriod {
   double from_utc = 0.0, to_utc = 0.0;
 };
-std::vector<ExposureStep> epw_steps(const EpwFile& file, const Site& site, std::optional<Period> period = {});
+std::vector<ExposureStep> epw_steps(const EpwFile& file, const Site& site, std::optional<TimePeriod> period = {});
 
 // Day of the year (1..366) of a Unix time, in UTC.
 int day_of_year_utc(double unix_time_utc);

@@ -46,7 +46,7 @@ std::vector<ExposureStep> regular_steps(const Site& site, double from, double to
   return steps;
 }
 
-std::vector<ExposureStep> epw_steps(const EpwFile& file, const Site& site, std::optional<Period> period) {
+std::vector<ExposureStep> epw_steps(const EpwFile& file, const Site& site, std::optional<TimePeriod> period) {
   std::vector<ExposureStep> steps;
   auto add = [&](const EpwRecord& r, double t) {
     ExposureStep s;

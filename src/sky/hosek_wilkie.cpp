@@ -159,28 +159,39 @@ class HosekWilkieInstant final : public SkyInstant {
     return sum;
   }
 
-  // Per band the distribution is g(θ)·(f(γ) + I·√cos θ): tabulate g, I·√cos θ and f once each.
+  // Per band the distribution is g(θ)·(f(γ) + I·√cos θ), so the broadband table is
+  // S(θ) + Σ_b G_b(θ)·F_b(γ): eleven small vectors per step, then one cache-resident row at a time.
   void tabulate(std::span<const double> thetas, std::span<const double> gammas, float* out) const override {
     const std::size_t nt = thetas.size(), ng = gammas.size();
-    std::vector<double> table(nt * ng, 0.0), f(ng);
+    if (!up_) {
+      std::fill(out, out + nt * ng, 0.0f);
+      return;
+    }
+    std::vector<float> f(kBands * ng), g(kBands);
     for (int b = 0; b < kBands; ++b) {
-      if (!up_) break;
       const double* p = sky_.parameters(b);
-      const double w = band_weight(b) * sky_.scale(b);
       for (std::size_t j = 0; j < ng; ++j) {
         const double cg = std::cos(gammas[j]);
-        f[j] = p[2] + p[3] * std::exp(p[4] * gammas[j]) + p[5] * cg * cg +
-               p[6] * (1.0 + cg * cg) / std::pow(1.0 + p[8] * p[8] - 2.0 * p[8] * cg, 1.5);
-      }
-      for (std::size_t i = 0; i < nt; ++i) {
-        const double ct = std::cos(thetas[i]);
-        const double g = w * (1.0 + p[0] * std::exp(p[1] / (ct + 0.01)));
-        const double s = p[7] * std::sqrt(std::max(ct, 0.0));
-        double* row = table.data() + i * ng;
-        for (std::size_t j = 0; j < ng; ++j) row[j] += g * (f[j] + s);
+        f[b * ng + j] = static_cast<float>(p[2] + p[3] * std::exp(p[4] * gammas[j]) + p[5] * cg * cg +
+                                           p[6] * (1.0 + cg * cg) / std::pow(1.0 + p[8] * p[8] - 2.0 * p[8] * cg, 1.5));
       }
     }
-    for (std::size_t k = 0; k < nt * ng; ++k) out[k] = static_cast<float>(table[k]);
+    for (std::size_t i = 0; i < nt; ++i) {
+      const double ct = std::cos(thetas[i]);
+      double along_theta = 0.0;
+      for (int b = 0; b < kBands; ++b) {
+        const double* p = sky_.parameters(b);
+        const double gb = band_weight(b) * sky_.scale(b) * (1.0 + p[0] * std::exp(p[1] / (ct + 0.01)));
+        g[b] = static_cast<float>(gb);
+        along_theta += gb * p[7] * std::sqrt(std::max(ct, 0.0));
+      }
+      float* row = out + i * ng;
+      std::fill(row, row + ng, static_cast<float>(along_theta));
+      for (int b = 0; b < kBands; ++b) {
+        const float* fb = f.data() + b * ng;
+        for (std::size_t j = 0; j < ng; ++j) row[j] += g[b] * fb[j];
+      }
+    }
   }
 
   double direct_normal() const override { return dni_; }

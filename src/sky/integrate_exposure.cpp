@@ -7,6 +7,9 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#ifdef __SSE2__
+#include <immintrin.h>
+#endif
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -24,32 +27,54 @@ struct Geometry {
   std::vector<double> gamma;  // γ_j = 2·asin(j / (samples − 1))
 };
 
+// Per-thread sums. The diffuse band is summed in float over a chunk of steps (fast) and flushed
+// into double after each chunk, so a year of steps loses no precision.
 struct Accumulator {
   std::vector<double> direct, diffuse;
+  std::vector<float> partial_diffuse;
   std::vector<float> table;
-  std::vector<float> cos_dphi;
+  std::vector<float> cos_dphi, position;
   explicit Accumulator(const Geometry& g)
       : direct(static_cast<std::size_t>(g.width) * g.height, 0.0),
         diffuse(direct.size(), 0.0),
+        partial_diffuse(direct.size(), 0.0f),
         table(static_cast<std::size_t>(g.height) * g.samples),
-        cos_dphi(g.width) {}
+        cos_dphi(g.width),
+        position(g.width) {}
+  void flush() {
+    for (std::size_t i = 0; i < diffuse.size(); ++i) diffuse[i] += partial_diffuse[i];
+    std::fill(partial_diffuse.begin(), partial_diffuse.end(), 0.0f);
+  }
 };
 
-void add_diffuse(const Geometry& g, const SkyInstant& sky, double hours, Accumulator& acc) {
+// sqrt over a row; SSE2 (x86-64 baseline) does four at once, which the compiler will not do for
+// std::sqrt without -fno-math-errno.
+void sqrt_in_place(float* v, int n) {
+  int x = 0;
+#ifdef __SSE2__
+  for (; x + 4 <= n; x += 4) _mm_storeu_ps(v + x, _mm_sqrt_ps(_mm_loadu_ps(v + x)));
+#endif
+  for (; x < n; ++x) v[x] = std::sqrt(v[x]);
+}
+
+void add_diffuse(const Geometry& g, const SkyInstant& sky, float hours, Accumulator& acc) {
   sky.tabulate(g.theta, g.gamma, acc.table.data());
   const double sz = std::sin(sky.sun_zenith()), cz = std::cos(sky.sun_zenith());
   const double cs = std::cos(sky.sun_azimuth()), ss = std::sin(sky.sun_azimuth());
   for (int x = 0; x < g.width; ++x) acc.cos_dphi[x] = static_cast<float>(g.cos_phi[x] * cs + g.sin_phi[x] * ss);
   const float last = static_cast<float>(g.samples - 1);
+  float* pos = acc.position.data();
   for (int y = 0; y < g.height; ++y) {
     const float a = static_cast<float>(g.sin_theta[y] * sz), b = static_cast<float>(g.cos_theta[y] * cz);
     const float* t = acc.table.data() + static_cast<std::size_t>(y) * g.samples;
-    double* out = acc.diffuse.data() + static_cast<std::size_t>(y) * g.width;
+    float* out = acc.partial_diffuse.data() + static_cast<std::size_t>(y) * g.width;
+    // Table position sin(γ/2)·(n−1), with 1 − cos γ = 2 sin²(γ/2).
+    const float half_scaled = 0.5f * last * last;
+    for (int x = 0; x < g.width; ++x) pos[x] = std::max(0.0f, half_scaled * (1.0f - (a * acc.cos_dphi[x] + b)));
+    sqrt_in_place(pos, g.width);
     for (int x = 0; x < g.width; ++x) {
-      const float u = a * acc.cos_dphi[x] + b;
-      const float s = std::sqrt(std::max(0.0f, 0.5f * (1.0f - u))) * last;  // sin(γ/2)·(n−1)
-      const int k = std::min(static_cast<int>(s), g.samples - 2);
-      const float f = s - static_cast<float>(k);
+      const int k = std::min(static_cast<int>(pos[x]), g.samples - 2);
+      const float f = pos[x] - static_cast<float>(k);
       out[x] += hours * (t[k] + f * (t[k + 1] - t[k]));
     }
   }
@@ -126,14 +151,22 @@ ExposureMap integrate_exposure(const SkyModel& model, std::span<const ExposureSt
     }
   }
   tbb::enumerable_thread_specific<Accumulator> per_thread([&] { return Accumulator(g); });
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, steps.size(), 4), [&](const auto& range) {
+  // Chunks of at most 64 steps: few enough float additions per cell to stay exact to ~1e-5.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, steps.size(), 16), [&](const auto& range) {
     Accumulator& acc = per_thread.local();
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const ExposureStep& s = steps[i];
-      if (s.hours == 0.0) continue;
-      const auto sky = model.at(s.conditions);
-      if (sky->has_diffuse()) add_diffuse(g, *sky, s.hours, acc);
-      if (s.conditions.sun_zenith < std::numbers::pi / 2) add_sun(g, *sky, s.hours, o, acc);
+    for (std::size_t begin = range.begin(); begin < range.end(); begin += 64) {
+      bool any = false;
+      for (std::size_t i = begin; i < std::min(begin + 64, range.end()); ++i) {
+        const ExposureStep& s = steps[i];
+        if (s.hours == 0.0) continue;
+        const auto sky = model.at(s.conditions);
+        if (sky->has_diffuse()) {
+          add_diffuse(g, *sky, static_cast<float>(s.hours), acc);
+          any = true;
+        }
+        if (s.conditions.sun_zenith < std::numbers::pi / 2) add_sun(g, *sky, s.hours, o, acc);
+      }
+      if (any) acc.flush();
     }
   });
   std::vector<double> direct(map.band(ExposureBand::direct).size(), 0.0), diffuse(direct.size(), 0.0);

@@ -11,6 +11,9 @@
 
 namespace skyview {
 
+// 32 zenith × 64 azimuth steps integrate the smooth Perez distribution to ~0.1 %.
+constexpr int kNormalisationSteps = 32;
+
 MeasuredInstant::MeasuredInstant(const SkyConditions& c, bool uniform, const perez::Parameters& shape, double dhi,
                                  double dni)
     : SkyInstant(c.sun_zenith, c.sun_azimuth), uniform_(uniform), p_(shape), dni_(dni) {
@@ -21,7 +24,7 @@ MeasuredInstant::MeasuredInstant(const SkyConditions& c, bool uniform, const per
   }
   // The Perez form is relative: scale it so ∫ L cos θ dΩ equals the measured DHI.
   scale_ = 1.0;
-  scale_ = dhi / diffuse_horizontal(64);
+  scale_ = dhi / diffuse_horizontal(kNormalisationSteps);
 }
 
 double MeasuredInstant::radiance(double theta, double gamma) const {

@@ -199,8 +199,8 @@ TEST(ExposureMap, EpwPeriodRepeatsTheTypicalYear) {
   Site site;
   site.latitude_deg = file.location.latitude_deg;
   site.longitude_deg = file.location.longitude_deg;
-  const auto june =
-      epw_steps(file, site, Period{parse_time("2030-06-01T00:00Z").unix_utc, parse_time("2030-07-01T00:00Z").unix_utc});
+  const auto june = epw_steps(
+      file, site, TimePeriod{parse_time("2030-06-01T00:00Z").unix_utc, parse_time("2030-07-01T00:00Z").unix_utc});
   EXPECT_EQ(june.size(), 30u * 24u);
 }
 

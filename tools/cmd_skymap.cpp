@@ -1,0 +1,184 @@
+// skyview skymap: the directional exposure map of the sky over a period (direct and diffuse
+// bands, Wh m-2 sr-1, Blinn–Newell longitude/latitude layout) plus a PNG preview.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <numbers>
+#include <optional>
+
+#include "command.h"
+#include "skyview/epw.h"
+#include "skyview/error.h"
+#include "skyview/exposure_map.h"
+#include "skyview/exposure_preview.h"
+#include "skyview/exposure_steps.h"
+#include "skyview/raster_io.h"
+#include "skyview/sky_models.h"
+#include "skyview/time_parse.h"
+
+namespace skyview::cli {
+namespace {
+
+struct SkymapOptions {
+  std::string output, preview, from, to, step = "30m", tz, sky = "preetham", epw;
+  std::optional<double> lat, lon, elevation;
+  double turbidity = 2.5, albedo = 0.2, efficacy = 125.0;
+  int size = 512;
+  bool no_preview = false;
+  OutputOptions out;
+};
+
+std::string number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", v);
+  return text;
+}
+
+std::unique_ptr<SkyModel> make_sky(const SkymapOptions& o) {
+  if (o.sky == "preetham") return make_preetham_sky(o.turbidity, o.efficacy);
+  if (o.sky == "hosek") return make_hosek_wilkie_sky(o.turbidity, o.albedo);
+  if (o.sky == "perez-epw") return make_perez_all_weather_sky();
+  if (o.sky == "isotropic") {
+    if (!o.epw.empty()) return make_isotropic_sky();
+    return make_isotropic_sky(std::shared_ptr<const SkyModel>(make_preetham_sky(o.turbidity, o.efficacy)));
+  }
+  throw Error("--sky must be preetham, hosek, perez-epw or isotropic (got '" + o.sky + "')");
+}
+
+int run(const SkymapOptions& o) {
+  const auto started = std::chrono::steady_clock::now();
+  const bool measured = o.sky == "perez-epw" || (o.sky == "isotropic" && !o.epw.empty());
+  if (o.sky == "perez-epw" && o.epw.empty()) throw Error("--sky perez-epw needs --epw FILE");
+  if (!o.epw.empty() && !measured) throw Error("--epw applies only to --sky perez-epw or isotropic");
+  if (o.size < 8 || o.size > 8192) throw Error("--size must be within 8 .. 8192");
+  if (o.from.empty() != o.to.empty()) throw Error("give both --from and --to, or neither");
+  if (!measured && o.from.empty()) throw Error("--from and --to are required for --sky " + o.sky);
+  const std::string preview =
+      o.no_preview
+          ? ""
+          : (o.preview.empty() ? std::filesystem::path(o.output).replace_extension(".png").string() : o.preview);
+  if (!preview.empty() && preview == o.output) throw Error("the preview would overwrite OUT; give --preview");
+  check_output_writable(o.output, o.out.overwrite);
+  if (!preview.empty()) check_output_writable(preview, o.out.overwrite);
+  const auto sky = make_sky(o);
+
+  std::optional<EpwFile> weather;
+  if (!o.epw.empty()) weather = read_epw(o.epw);
+  Site site;
+  if (!o.lat && !weather) throw Error("--lat and --lon are required");
+  site.latitude_deg = o.lat ? *o.lat : weather->location.latitude_deg;
+  site.longitude_deg = o.lon ? *o.lon : weather->location.longitude_deg;
+  site.elevation_m = o.elevation ? *o.elevation : (weather ? weather->location.elevation_m : 0.0);
+  if (!(std::abs(site.latitude_deg) <= 90.0)) throw Error("--lat must be within -90 .. 90");
+  if (!(std::abs(site.longitude_deg) <= 180.0)) throw Error("--lon must be within -180 .. 180");
+  if (o.lat.has_value() != o.lon.has_value()) throw Error("give both --lat and --lon, or neither (with --epw)");
+
+  std::vector<ExposureStep> steps;
+  std::map<std::string, std::string> meta;
+  if (!o.tz.empty()) check_time_zone(o.tz);
+  if (weather) {
+    std::optional<TimePeriod> period;
+    if (!o.from.empty()) period = TimePeriod{parse_time(o.from, o.tz).unix_utc, parse_time(o.to, o.tz).unix_utc};
+    steps = epw_steps(*weather, site, period);
+    meta["EPW"] = o.epw;
+    meta["EPW_STEPS"] = "one hour per record at its irradiance instant (--step is not used)";
+  } else {
+    steps = regular_steps(site, parse_time(o.from, o.tz).unix_utc, parse_time(o.to, o.tz).unix_utc,
+                          parse_duration_s(o.step));
+    meta["STEP"] = o.step;
+  }
+  ThreadLimit limit(o.out.threads);
+  ExposureOptions eo;
+  eo.width = eo.height = o.size;
+  const ExposureMap map = integrate_exposure(*sky, steps, eo);
+
+  const Direction up{0, 0, 1};
+  const double direct_h = map.irradiation(ExposureBand::direct, up);
+  const double diffuse_h = map.irradiation(ExposureBand::diffuse, up);
+  meta["SKY"] = o.sky;
+  meta["LATITUDE"] = number(site.latitude_deg);
+  meta["LONGITUDE"] = number(site.longitude_deg);
+  meta["ELEVATION"] = number(site.elevation_m);
+  if (!o.from.empty()) {
+    meta["FROM"] = o.from;
+    meta["TO"] = o.to;
+  }
+  if (o.sky == "preetham" || o.sky == "hosek" || (o.sky == "isotropic" && !weather)) {
+    meta["TURBIDITY"] = number(o.turbidity);
+  }
+  if (o.sky == "hosek") meta["ALBEDO"] = number(o.albedo);
+  if (o.sky == "preetham" || (o.sky == "isotropic" && !weather)) meta["LUMINOUS_EFFICACY_LM_W"] = number(o.efficacy);
+  meta["TIME_STEPS"] = std::to_string(steps.size());
+  meta["PARAMETRISATION"] =
+      "Blinn-Newell longitude/latitude: column x = azimuth [x,x+1)*360/width deg clockwise from north (N at the "
+      "left edge, S in the middle); row y = zenith angle [y,y+1)*90/height deg (zenith at the top row)";
+  meta["GLOBAL_HORIZONTAL_WH_M2"] = number(direct_h + diffuse_h);
+  meta["DIRECT_HORIZONTAL_WH_M2"] = number(direct_h);
+  meta["DIFFUSE_HORIZONTAL_WH_M2"] = number(diffuse_h);
+  meta["COMMAND"] = command_line();
+
+  WriteOptions wo;
+  wo.format = o.out.format;
+  wo.creation_options = o.out.creation_options;
+  wo.overwrite = o.out.overwrite;
+  wo.metadata = meta;
+  GeoReference georef;  // x = azimuth (degrees), y = elevation (degrees); no CRS
+  georef.geotransform = {0.0, 360.0 / o.size, 0.0, 90.0, 0.0, -90.0 / o.size};
+  georef.has_geotransform = true;
+  const std::string definition =
+      "radiant exposure per unit solid angle; cosine-weighted integral over the "
+      "sky a surface sees = its exposure (Wh/m2)";
+  write_bands(o.output, o.size, o.size, georef,
+              {{"direct",
+                "Wh m-2 sr-1",
+                map.band(ExposureBand::direct).data(),
+                {{"DEFINITION", "sun disc splatted over its disc; " + definition}}},
+               {"diffuse",
+                "Wh m-2 sr-1",
+                map.band(ExposureBand::diffuse).data(),
+                {{"DEFINITION", "sky without the sun; " + definition}}}},
+              wo);
+  if (!preview.empty()) write_exposure_preview(preview, map, o.out.overwrite);
+  if (!o.out.quiet) {
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    std::fprintf(stderr,
+                 "skyview skymap: %zu steps, horizontal exposure %.1f kWh/m2 (direct %.1f, diffuse %.1f), %.2f s\n",
+                 steps.size(), (direct_h + diffuse_h) / 1000, direct_h / 1000, diffuse_h / 1000, seconds);
+  }
+  return 0;
+}
+
+Runner setup(CLI::App& app) {
+  auto o = std::make_shared<SkymapOptions>();
+  app.add_option("OUT", o->output, "Output raster (bands direct, diffuse)")->required();
+  app.add_option("--lat", o->lat, "Latitude, degrees north (default with --epw: the file's)");
+  app.add_option("--lon", o->lon, "Longitude, degrees east (default with --epw: the file's)");
+  app.add_option("--elevation", o->elevation, "Elevation above sea level, metres (for the sun position)");
+  app.add_option("--from", o->from, "Start, ISO 8601 with offset or zone (perez-epw default: the whole file)");
+  app.add_option("--to", o->to, "End (excluded)");
+  app.add_option("--step", o->step, "Time step for analytic skies: 1h, 30m, 10min ...")->capture_default_str();
+  app.add_option("--tz", o->tz, "IANA zone for --from/--to without an offset");
+  app.add_option("--sky", o->sky, "preetham | hosek | perez-epw | isotropic")->capture_default_str();
+  app.add_option("--turbidity", o->turbidity, "Atmospheric turbidity (preetham 1.7-10, hosek 1-10)")
+      ->capture_default_str();
+  app.add_option("--albedo", o->albedo, "Ground albedo for hosek, 0-1")->capture_default_str();
+  app.add_option("--luminous-efficacy", o->efficacy, "lm/W turning Preetham luminance into radiance")
+      ->capture_default_str();
+  app.add_option("--epw", o->epw, "EnergyPlus weather file (perez-epw; isotropic from measured data)");
+  app.add_option("--size", o->size, "Map width and height in cells")->capture_default_str();
+  app.add_option("--preview", o->preview, "PNG preview path (default: OUT with .png)");
+  app.add_flag("--no-preview", o->no_preview, "Do not write the PNG preview");
+  add_output_options(app, o->out);
+  app.footer(
+      "Bands: 1 direct, 2 diffuse, radiant exposure per unit solid angle (Wh m-2 sr-1). Layout: columns = azimuth "
+      "clockwise from north (N at the left edge, S in the middle), rows = zenith angle (zenith at the top, horizon "
+      "at the bottom). See docs/sky.md.");
+  return [o] { return run(*o); };
+}
+
+const Registration reg("skymap", "Directional exposure map of the sky over a period (sun and sky models, EPW data)",
+                       setup);
+
+}  // namespace
+}  // namespace skyview::cli
