@@ -210,34 +210,48 @@ int print_events(const Options& o, const Site& site, const Period& p) {
 
 Runner setup(CLI::App& app) {
   auto o = std::make_shared<Options>();
-  app.add_option("--lat", o->lat, "Latitude, degrees north (required)");
-  app.add_option("--lon", o->lon, "Longitude, degrees east (required)");
-  app.add_option("--elevation", o->elevation, "Elevation above sea level, metres")->capture_default_str();
+  app.add_option("--lat", o->lat, "Latitude, degrees north (required)")->type_name("DEG");
+  app.add_option("--lon", o->lon, "Longitude, degrees east (required)")->type_name("DEG");
+  app.add_option("--elevation", o->elevation, "Elevation above sea level, metres")
+      ->capture_default_str()
+      ->type_name("M");
   app.add_option("--pressure", o->pressure, "Annual mean air pressure, mbar (0 = no refraction)")
-      ->capture_default_str();
-  app.add_option("--temperature", o->temperature, "Annual mean temperature, degrees C")->capture_default_str();
+      ->capture_default_str()
+      ->type_name("MBAR");
+  app.add_option("--temperature", o->temperature, "Annual mean temperature, degrees C")
+      ->capture_default_str()
+      ->type_name("C");
   app.add_option("--delta-t", o->delta_t,
                  "TT - UT1 in seconds (default: automatic, observed 1950-2020, 69.2 s to 2050, "
-                 "Espenak-Meeus outside)");
-  app.add_option("--delta-ut1", o->delta_ut1, "UT1 - UTC in seconds (-1..1)")->capture_default_str();
+                 "Espenak-Meeus outside)")
+      ->type_name("S");
+  app.add_option("--delta-ut1", o->delta_ut1, "UT1 - UTC in seconds (-1..1)")->capture_default_str()->type_name("S");
   app.add_option("--time", o->time,
                  "One instant: ISO 8601 with offset or zone, e.g. 2003-10-17T12:30:30-07:00 or "
-                 "'2024-06-21T12:00 Europe/Athens'");
-  app.add_option("--from", o->from, "Start of a period (same forms as --time)");
-  app.add_option("--to", o->to, "End of the period, included");
-  app.add_option("--step", o->step, "Step of the period: 1h, 30m, 15min, 10s, 1d")->capture_default_str();
-  app.add_option("--tz", o->tz, "IANA zone for times without an offset and for local output, e.g. Europe/Athens");
+                 "'2024-06-21T12:00 Europe/Athens'")
+      ->type_name("T");
+  app.add_option("--from", o->from, "Start of a period (same forms as --time)")->type_name("T1");
+  app.add_option("--to", o->to, "End of the period, included")->type_name("T2");
+  app.add_option("--step", o->step, "Step of the period: 1h, 30m, 15min, 10s, 1d")
+      ->capture_default_str()
+      ->type_name("DURATION");
+  app.add_option("--tz", o->tz, "IANA zone for times without an offset and for local output, e.g. Europe/Athens")
+      ->type_name("ZONE");
   app.add_flag("--csv", o->csv, "CSV: time_utc,zenith_deg,azimuth_deg,elevation_deg, then the other columns");
   app.add_flag("--events", o->events, "Sunrise, transit and sunset of each local day instead of positions");
   app.add_option("--convention", o->convention,
                  "Events day: 'local' (events of the local calendar day) or 'spa' (SPA's UT-day wrapping, as in "
                  "the report's test output)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->type_name("local|spa");
   app.add_option("--facade-azimuth", o->facade_azimuth,
-                 "Add horizontal/vertical shadow angles (HSA, VSA) for a façade facing this azimuth (deg from north)");
-  app.add_option("--slope", o->slope, "Add the incidence angle on a surface tilted this many degrees");
+                 "Add horizontal/vertical shadow angles (HSA, VSA) for a façade facing this azimuth (deg from north)")
+      ->type_name("DEG");
+  app.add_option("--slope", o->slope, "Add the incidence angle on a surface tilted this many degrees")
+      ->type_name("DEG");
   app.add_option("--surface-azimuth", o->surface_azimuth,
-                 "Azimuth the tilted surface faces, degrees clockwise from north (default 180)");
+                 "Azimuth the tilted surface faces, degrees clockwise from north (default 180)")
+      ->type_name("DEG");
   return [o] {
     const Site site = read_site(*o);
     const Period period = read_period(*o);
