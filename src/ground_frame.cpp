@@ -17,6 +17,11 @@ void Jacobian::pixel_step_for_azimuth(double azimuth, double& dcol, double& drow
   const double det = a * d - b * c;
   dcol = (d * east - b * north) / det;
   drow = (a * north - c * east) / det;
+  // cos(90°) is 6e-17, not 0: snap such residues so that rays along a row or column stay on it
+  // (otherwise a ray along row 0 "leaves" the raster at once).
+  const double scale = std::max(std::abs(dcol), std::abs(drow));
+  if (std::abs(dcol) < 1e-12 * scale) dcol = 0.0;
+  if (std::abs(drow) < 1e-12 * scale) drow = 0.0;
 }
 
 double Jacobian::metres(double dcol, double drow) const { return std::hypot(a * dcol + b * drow, c * dcol + d * drow); }

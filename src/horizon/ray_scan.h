@@ -98,7 +98,10 @@ void scan_rays(const Terrain& terrain, const Window& window, HorizonField& out, 
         for (int k = 0; k < s.directions; ++k) {
           const double east = sin_k[k] * cr + cos_k[k] * sr;   // sin(az + rot)
           const double north = cos_k[k] * cr - sin_k[k] * sr;  // cos(az + rot)
-          const double pc = ie_c * east + in_c * north, pr = ie_r * east + in_r * north;
+          double pc = ie_c * east + in_c * north, pr = ie_r * east + in_r * north;
+          // cos(90°) is 6e-17, not 0: keep rays along a row or column on it.
+          if (std::abs(pc) < 1e-12 * std::abs(pr)) pc = 0.0;
+          if (std::abs(pr) < 1e-12 * std::abs(pc)) pr = 0.0;
           double max_t = -std::numeric_limits<double>::infinity();
           double min_t = std::numeric_limits<double>::infinity();
           // Distance at which the ray leaves the buffer, so samples need no bounds check.

@@ -90,6 +90,7 @@ class TerrainMesh {
         }
       }
     }
+    if (w == 1 || h == 1) add_ribbon(device, t, sign, geom);
     if (idx.empty()) idx = {0, 0, 0};  // a degenerate triangle keeps Embree happy on tiny rasters
     auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                               3 * sizeof(unsigned), idx.size() / 3));
@@ -121,6 +122,41 @@ class TerrainMesh {
     ray.mask = 0xFFFFFFFFu;
     rtcOccluded1(scene_.get(), &context, &ray);
     return ray.tfar < 0.0f;
+  }
+
+  // A single row or column has no quads: its profile is extruded half a cell to each side so
+  // that rays along it still meet the terrain.
+  void add_ribbon(RTCDevice device, const Terrain& t, double sign, RTCGeometry) {
+    const int n = std::max(t.width(), t.height());
+    const bool row = t.height() == 1;
+    RTCGeometry ribbon = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(ribbon, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                          3 * sizeof(float), 2 * static_cast<std::size_t>(n)));
+    for (int i = 0; i < n; ++i) {
+      const float z = row ? t.heights(i, 0) : t.heights(0, i);
+      for (int side = 0; side < 2; ++side) {
+        const double off = side == 0 ? -0.5 : 0.5;
+        const double c = row ? i : off, r = row ? off : i;
+        float* p = v + 3 * (2 * static_cast<std::size_t>(i) + side);
+        p[0] = static_cast<float>(j_.a * c + j_.b * r);
+        p[1] = static_cast<float>(j_.c * c + j_.d * r);
+        p[2] = std::isnan(z) ? 0.0f : static_cast<float>(sign * z);
+      }
+    }
+    std::vector<unsigned> idx;
+    for (int i = 0; i + 1 < n; ++i) {
+      const bool valid = row ? t.valid(i, 0) && t.valid(i + 1, 0) : t.valid(0, i) && t.valid(0, i + 1);
+      if (!valid) continue;
+      const unsigned a = 2 * i, b = a + 1, c = a + 2, d = a + 3;
+      idx.insert(idx.end(), {a, b, d, a, d, c});
+    }
+    if (idx.empty()) idx = {0, 0, 0};
+    auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(ribbon, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                              3 * sizeof(unsigned), idx.size() / 3));
+    std::copy(idx.begin(), idx.end(), ib);
+    rtcCommitGeometry(ribbon);
+    rtcAttachGeometry(scene_.get(), ribbon);
+    rtcReleaseGeometry(ribbon);
   }
 
   // The largest coordinate magnitude, which sets the float resolution of the mesh.

@@ -1,0 +1,178 @@
+// The hard cases: thin walls, spikes, degenerate shapes, nodata, extreme heights and cell
+// sizes, high latitudes, the antimeridian, and directions exactly along the grid.
+#include <GeographicLib/Geodesic.hpp>
+
+#include "test_support.h"
+
+using namespace skyview;
+using namespace skyview::test;
+
+namespace {
+
+const char* kExactMethods[] = {"march", "sweep", "raycast"};
+
+// The ray cast lifts its eye 1e-4 cell above the surface, which tilts angles to terrain one cell
+// away by up to about 5e-5 rad; the march and the sweep are exact to float precision.
+double tol(const std::string& method) { return method == "raycast" ? 1e-4 : 1e-5; }
+
+HorizonField horizons(const Terrain& t, const std::string& method, int directions, bool lower = false) {
+  HorizonParams p;
+  p.directions = directions;
+  p.lower = lower;
+  p.rays = 0;
+  if (method != "sweep") p.radius = 1e5;
+  HorizonField f;
+  ProgressCounter progress;
+  make_horizon_engine(method, p)->compute(t, Window::whole(t), f, progress);
+  return f;
+}
+
+// Every valid cell gets finite angles within [-90°, 90°]; nodata cells get NaN.
+void expect_sane(const Terrain& t, const HorizonField& f, const std::string& what) {
+  for (int r = 0; r < t.height(); ++r) {
+    for (int c = 0; c < t.width(); ++c) {
+      for (int k = 0; k < f.directions; ++k) {
+        const float h = f.upper_of(f.cell(c, r))[k];
+        if (!t.valid(c, r)) {
+          ASSERT_TRUE(std::isnan(h)) << what;
+        } else {
+          ASSERT_TRUE(std::isfinite(h)) << what << " cell " << c << "," << r;
+          ASSERT_GE(h, -M_PI / 2 - 1e-6) << what;
+          ASSERT_LE(h, M_PI / 2 + 1e-6) << what;
+        }
+      }
+    }
+  }
+}
+
+TEST(HardCases, OneCellThickWallAndSpikeGiveTheirExactAngle) {
+  // A wall one cell thick along a column, 10 m west of the observer: atan(H / 10) looking west.
+  Terrain wall = rasterize([](double e, double) { return std::abs(e + 10.0) < 0.5 ? 25.0 : 0.0; }, 41, 41,
+                           local_grid(41, 41, 1.0));
+  Terrain spike =
+      rasterize([](double e, double n) { return std::abs(e) < 0.5 && std::abs(n - 5.0) < 0.5 ? 30.0 : 0.0; }, 41, 41,
+                local_grid(41, 41, 1.0));
+  for (const char* m : kExactMethods) {
+    const HorizonField fw = horizons(wall, m, 8);
+    EXPECT_NEAR(fw.upper_of(fw.cell(20, 20))[6], std::atan(25.0 / 10.0), tol(m)) << m;  // west
+    EXPECT_NEAR(fw.upper_of(fw.cell(20, 20))[2], 0.0, tol(m)) << m;                     // east: open
+    const HorizonField fs = horizons(spike, m, 8);
+    EXPECT_NEAR(fs.upper_of(fs.cell(20, 20))[0], std::atan(30.0 / 5.0), tol(m)) << m;  // north
+    expect_sane(wall, fw, m);
+  }
+}
+
+TEST(HardCases, SingleCellPitSeesItsNeighboursAlongAxesAndDiagonals) {
+  Terrain pit = rasterize([](double e, double n) { return std::abs(e) < 0.5 && std::abs(n) < 0.5 ? -2.0 : 0.0; }, 21,
+                          21, local_grid(21, 21, 1.0));
+  for (const char* m : kExactMethods) {
+    const HorizonField f = horizons(pit, m, 8);
+    const float* h = f.upper_of(f.cell(10, 10));
+    for (int k = 0; k < 8; k += 2) EXPECT_NEAR(h[k], std::atan(2.0), tol(m)) << m << " axis " << k;
+    for (int k = 1; k < 8; k += 2) EXPECT_NEAR(h[k], std::atan(2.0 / std::sqrt(2.0)), tol(m)) << m << " diagonal " << k;
+  }
+}
+
+TEST(HardCases, OneRowAndOneColumnRasters) {
+  // A profile with a 10 m step 20 m away, stored as 1 x N and as N x 1.
+  const int n = 61;
+  Terrain row = rasterize([](double e, double) { return e > 19.5 ? 10.0 : 0.0; }, n, 1, local_grid(n, 1, 1.0));
+  Terrain col = rasterize([](double, double nn) { return nn > 19.5 ? 10.0 : 0.0; }, 1, n, local_grid(1, n, 1.0));
+  for (const char* m : {"march", "sweep", "raycast", "sampled"}) {
+    const HorizonField fr = horizons(row, m, 4), fc = horizons(col, m, 4);
+    expect_sane(row, fr, m);
+    expect_sane(col, fc, m);
+    if (std::string(m) == "sampled") continue;
+    EXPECT_NEAR(fr.upper_of(fr.cell(30, 0))[1], std::atan(10.0 / 20.0), tol(m)) << m;  // east
+    EXPECT_NEAR(fc.upper_of(fc.cell(0, 30))[0], std::atan(10.0 / 20.0), tol(m)) << m;  // north
+  }
+}
+
+TEST(HardCases, NodataHolesAndBordersStayNodataAndNeverOcclude) {
+  Terrain t = rasterize(synthetic_city(5), 81, 81, local_grid(81, 81, 1.0));
+  for (int i = 0; i < 81; ++i) {
+    t.heights(i, 0) = t.heights(0, i) = t.heights(80, i) = t.heights(i, 80) = NAN;  // border
+  }
+  for (int r = 30; r < 40; ++r) {
+    for (int c = 30; c < 45; ++c) t.heights(c, r) = NAN;  // hole
+  }
+  for (const char* m : {"march", "sweep", "raycast", "sampled"}) expect_sane(t, horizons(t, m, 16, true), m);
+}
+
+TEST(HardCases, MillimetreReliefAtTheDeadSeaAndOnEverest) {
+  for (double base : {-420.0, 8848.0}) {
+    const std::string dir = temp_dir("mm" + std::to_string(static_cast<int>(base)));
+    // A 1 mm step 5 cm (one cell) east of the observer, stored in a float32 GeoTIFF.
+    Terrain t =
+        rasterize([](double e, double) { return e > 0.025 ? 0.001 : 0.0; }, 41, 41, local_grid(41, 41, 0.05), base);
+    write_terrain(dir + "/step.tif", t, {});
+    const Terrain back = read_terrain(dir + "/step.tif", {});
+    for (const char* m : kExactMethods) {
+      const HorizonField f = horizons(back, m, 4);
+      // float32 resolves about 0.5 mm at 8848 m, so the step is stored to within that.
+      const double tol = base > 1000 ? std::atan(0.0005 / 0.05) : 2e-4;
+      EXPECT_NEAR(f.upper_of(f.cell(20, 20))[1], std::atan(0.001 / 0.05), tol) << m << " base " << base;
+      EXPECT_NEAR(f.upper_of(f.cell(20, 20))[3], 0.0, 1e-4) << m << " base " << base;
+    }
+  }
+}
+
+TEST(HardCases, TinyAndHugeCellsGiveTheSameScaledAnswer) {
+  // A pit of 20 cells radius and depth, at 0.05 m and at 90 m cells: the same svf.
+  for (double cell : {0.05, 90.0}) {
+    const int n = 51;
+    const Terrain t = rasterize(circular_pit(20 * cell, 20 * cell), n, n, local_grid(n, n, cell));
+    HorizonParams p;
+    p.directions = 64;
+    p.radius = 30 * cell;
+    for (const char* m : kExactMethods) {
+      const CellResult r = run_cell(t, 25, 25, m, p);
+      EXPECT_NEAR(r.svf, 0.5, 0.02) << m << " cell " << cell;
+    }
+  }
+}
+
+GeoReference degrees_grid(int n, double lat, double lon, double cell) {
+  const GeographicLib::Geodesic& wgs = GeographicLib::Geodesic::WGS84();
+  double lat2, lon2;
+  wgs.Direct(lat, lon, 0.0, cell, lat2, lon2);
+  const double dlat = lat2 - lat;
+  wgs.Direct(lat, lon, 90.0, cell, lat2, lon2);
+  const double dlon = lon2 - lon;
+  GeoReference g;
+  g.has_geotransform = true;
+  g.geotransform = {lon - 0.5 * n * dlon, dlon, 0, lat + 0.5 * n * dlat, 0, -dlat};
+  g.crs_wkt = wkt_of("EPSG:4326");
+  return g;
+}
+
+TEST(HardCases, GeographicRasterAtLatitude85AndAcrossTheAntimeridian) {
+  const int n = 101;
+  const double expected = std::pow(std::cos(std::atan(10.0 / 20.0)), 2);
+  for (double lon : {25.0, 180.0}) {  // 180: the raster spans 179.99.. to 180.01..
+    const Terrain t = rasterize(circular_pit(20.0, 10.0), n, n, degrees_grid(n, 85.0, lon, 0.5));
+    HorizonParams p;
+    p.directions = 64;
+    p.radius = 24.0;
+    for (const char* m : kExactMethods) {
+      const CellResult r = run_cell(t, n / 2, n / 2, m, p);
+      EXPECT_NEAR(r.svf, expected, 0.01) << m << " lon " << lon;
+    }
+  }
+}
+
+TEST(HardCases, DirectionsExactlyAlongRowsColumnsAndDiagonals) {
+  // A square courtyard 20 m wide with 10 m walls, 8 directions: the axes see the wall 10 m away,
+  // the diagonals see the corner 10*sqrt(2) m away.
+  const Terrain t = rasterize([](double e, double n) { return std::max(std::abs(e), std::abs(n)) > 9.5 ? 10.0 : 0.0; },
+                              41, 41, local_grid(41, 41, 1.0));
+  for (const char* m : kExactMethods) {
+    const HorizonField f = horizons(t, m, 8);
+    const float* h = f.upper_of(f.cell(20, 20));
+    for (int k = 0; k < 8; k += 2) EXPECT_NEAR(h[k], std::atan(10.0 / 10.0), tol(m)) << m << " " << k;
+    for (int k = 1; k < 8; k += 2)
+      EXPECT_NEAR(h[k], std::atan(10.0 / (10.0 * std::sqrt(2.0))), tol(m)) << m << " " << k;
+  }
+}
+
+}  // namespace
