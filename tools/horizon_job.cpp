@@ -3,6 +3,9 @@
 #include <cstdio>
 #include <sstream>
 
+#include <optional>
+
+#include "skyview/accuracy_choice.h"
 #include "skyview/error.h"
 #include "skyview/version.h"
 
@@ -13,7 +16,8 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
   app.add_option("output", o.output, "Output raster")->required();
   app.add_option("-b,--band", o.band, "Input band")->capture_default_str();
   app.add_option("--z-scale", o.z_scale, "Vertical unit factor to metres (0.3048 for feet)")->capture_default_str();
-  app.add_option("--method", o.method, "Horizon method: sampled, march, sweep (exact, unlimited radius), raycast (Embree reference)")
+  app.add_option("--method", o.method,
+                 "Horizon method: sampled, march, sweep (exact, unlimited radius), raycast (Embree reference)")
       ->capture_default_str();
   app.add_option("--directions", o.params.directions, "Number of azimuth directions")->capture_default_str();
   app.add_option("--samples", o.params.samples, "Samples per direction (sampled)")->capture_default_str();
@@ -32,6 +36,10 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
       ->check(CLI::IsMember({"auto", "on", "off"}))
       ->capture_default_str();
   app.add_option("--refraction", o.params.refraction, "Refraction coefficient with curvature")->capture_default_str();
+  app.add_option("--max-error", o.max_error,
+                 "Choose the cheapest method and parameters whose calibrated 99th-percentile svf error is below "
+                 "this (overrides --method, --directions, --samples, --radius)")
+      ->check(CLI::Range(0.0, 1.0));
   app.add_flag("!--no-early-exit", o.params.early_exit, "Disable the max-height early termination (same results)");
   add_output_options(app, o.out);
 }
@@ -40,7 +48,15 @@ HorizonJob run_horizon_job(const HorizonJobOptions& o, const std::string& comman
   check_output_writable(o.output, o.out.overwrite);
   HorizonJob job;
   job.edge = o.edge == "nodata" ? EdgeMode::nodata : EdgeMode::open;
-  job.engine = make_horizon_engine(o.method, o.params);
+  std::string method = o.method;
+  HorizonParams params = o.params;
+  std::optional<AccuracyChoice> choice;
+  if (o.max_error > 0.0) {
+    choice = choose_for_max_error(o.max_error, o.params);
+    method = choice->method;
+    params = choice->params;
+  }
+  job.engine = make_horizon_engine(method, params);
   ReadOptions ro;
   ro.band = o.band;
   ro.z_scale = o.z_scale;
@@ -67,6 +83,16 @@ HorizonJob run_horizon_job(const HorizonJobOptions& o, const std::string& comman
   m["CITATION"] = std::string(job.engine->citation());
   for (const auto& [k, v] : job.engine->describe()) m[k] = v;
   m["EDGE_MODE"] = o.edge;
+  if (choice) {
+    m["MAX_ERROR_REQUESTED"] = std::to_string(o.max_error);
+    m["MAX_ERROR_CHOICE"] =
+        choice->method + " with " + std::to_string(choice->entry.directions) + " directions" +
+        (choice->method == "sampled" ? " and " + std::to_string(choice->entry.samples) + " samples" : "");
+    m["MAX_ERROR_CALIBRATED_P99"] = std::to_string(choice->entry.worst_p99);
+    m["MAX_ERROR_BASIS"] =
+        "worst 99th-percentile |svf error| against a 64-direction ray cast over the calibration "
+        "rasters of docs/benchmarks.md";
+  }
   m["NODATA_POLICY"] = "nodata cells give nodata; nodata inside a search path does not occlude";
   m["ANGLE_CONVENTION"] = "elevation above the horizontal; azimuth clockwise from true north";
   return job;

@@ -18,6 +18,7 @@ struct HorizonJobOptions {
   double z_scale = 1.0;
   std::string method = "sampled";
   std::string edge = "open";
+  double max_error = 0.0;  // > 0: choose method and parameters for this p99 svf error
   HorizonParams params;
   OutputOptions out;
 };

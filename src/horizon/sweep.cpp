@@ -64,7 +64,7 @@ struct LineSample {
 // hull only once they are more than kNearSteps behind the current step.
 void sweep_direction(const Terrain& terrain, const Window& window, double azimuth, double curvature, bool negate,
                      float* plane) {
-  constexpr int kNearSteps = 4;
+  constexpr int kNearSteps = 8;
   const int W = terrain.width(), H = terrain.height();
   const Jacobian j = terrain.frame.at(terrain.origin_col + 0.5 * W, terrain.origin_row + 0.5 * H);
   double pc, pr;

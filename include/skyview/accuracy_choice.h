@@ -1,0 +1,31 @@
+#pragma once
+// "Ask for an accuracy, not for knobs": the cheapest calibrated method and parameters whose
+// 99th-percentile absolute svf error stayed below the request on every calibration raster.
+// The table comes from `skyview bench` runs (docs/benchmarks.md says on which rasters).
+#include <string>
+#include <vector>
+
+#include "skyview/horizon_engine.h"
+
+namespace skyview {
+
+struct CalibrationEntry {
+  std::string method;
+  int directions = 16;
+  int samples = 16;
+  double worst_p99 = 0;    // worst 99th-percentile |svf error| over the calibration rasters
+  double ns_per_cell = 0;  // median cost on 2 cores, for ordering
+};
+
+const std::vector<CalibrationEntry>& calibration_table();
+
+struct AccuracyChoice {
+  std::string method;
+  HorizonParams params;
+  CalibrationEntry entry;
+};
+
+// Throws skyview::Error when no calibrated configuration reaches `max_error`.
+AccuracyChoice choose_for_max_error(double max_error, const HorizonParams& base);
+
+}  // namespace skyview
