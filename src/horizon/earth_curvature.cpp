@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "ray_scan.h"
 #include "skyview/error.h"
 
 namespace skyview::detail {
@@ -15,6 +16,17 @@ double curvature_coefficient(const HorizonParams& params, double max_distance, d
   // The drop changes the elevation angle at distance d by about c*d radians.
   const double threshold = 0.01 * M_PI / 180.0;
   return c * max_distance > threshold ? c : 0.0;
+}
+
+ScanSettings scan_settings(const HorizonParams& p, const Terrain& terrain) {
+  ScanSettings s;
+  s.directions = p.directions;
+  s.lower = p.lower;
+  s.early_exit = p.early_exit;
+  s.seed = p.seed;
+  s.max_distance = p.radius;
+  s.curvature = curvature_coefficient(p, p.radius, terrain.frame.earth_radius());
+  return s;
 }
 
 }  // namespace skyview::detail

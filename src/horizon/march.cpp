@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "earth_curvature.h"
 #include "methods.h"
 #include "ray_scan.h"
 
@@ -41,12 +40,7 @@ class MarchEngine final : public HorizonEngine {
   double radius() const override { return p_.radius; }
   void compute(const Terrain& terrain, const Window& window, HorizonField& out,
                ProgressCounter& progress) const override {
-    ScanSettings s;
-    s.directions = p_.directions;
-    s.lower = p_.lower;
-    s.early_exit = p_.early_exit;
-    s.max_distance = p_.radius;
-    s.curvature = curvature_coefficient(p_, p_.radius, terrain.frame.earth_radius());
+    ScanSettings s = scan_settings(p_, terrain);
     scan_rays(terrain, window, out, progress, s, EveryCrossing{p_.radius});
   }
 

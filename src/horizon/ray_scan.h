@@ -16,6 +16,7 @@
 #include <limits>
 #include <vector>
 
+#include "earth_curvature.h"
 #include "height_sampler.h"
 #include "skyview/horizon_engine.h"
 
@@ -43,6 +44,9 @@ struct ScanSettings {
   double curvature = 0.0;  // c in drop = c d^2
   double max_distance = std::numeric_limits<double>::infinity();
 };
+
+// Settings shared by the ray methods, from their parameters (radius already defaulted).
+ScanSettings scan_settings(const HorizonParams& p, const Terrain& terrain);
 
 // Placement must provide
 //   template <class Visit> void walk(double col_per_m, double row_per_m, double max_distance, double curvature,

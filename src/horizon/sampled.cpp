@@ -7,7 +7,6 @@
 #include <sstream>
 #include <vector>
 
-#include "earth_curvature.h"
 #include "methods.h"
 #include "ray_scan.h"
 #include "skyview/error.h"
@@ -53,14 +52,8 @@ class SampledEngine final : public HorizonEngine {
   double radius() const override { return p_.radius; }
   void compute(const Terrain& terrain, const Window& window, HorizonField& out,
                ProgressCounter& progress) const override {
-    ScanSettings s;
-    s.directions = p_.directions;
-    s.lower = p_.lower;
-    s.early_exit = p_.early_exit;
+    ScanSettings s = scan_settings(p_, terrain);
     s.rotate = true;
-    s.seed = p_.seed;
-    s.max_distance = p_.radius;
-    s.curvature = curvature_coefficient(p_, p_.radius, terrain.frame.earth_radius());
     scan_rays(terrain, window, out, progress, s, samples_);
   }
 
