@@ -17,12 +17,12 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
   app.add_option("-b,--band", o.band, "Input band")->capture_default_str();
   app.add_option("--z-scale", o.z_scale, "Vertical unit factor to metres (0.3048 for feet)")->capture_default_str();
   app.add_option("--method", o.method,
-                 "Horizon method: sampled, march, sweep (exact, unlimited radius), raycast (Embree reference)")
+                 "Horizon method: sweep (exact, unlimited radius), march, sampled, raycast (Embree reference)")
       ->capture_default_str();
   app.add_option("--directions", o.params.directions, "Number of azimuth directions")->capture_default_str();
   app.add_option("--samples", o.params.samples, "Samples per direction (sampled)")->capture_default_str();
   app.add_option("--radius", o.params.radius,
-                 "Search radius in metres (default 500 for sampled and march; sweep is unlimited)")
+                 "Search radius in metres for march and sampled (default 500); sweep is unlimited")
       ->check(CLI::PositiveNumber);
   app.add_option("--rays", o.params.rays, "Monte-Carlo rays per cell for raycast's direct svf (0 = none)")
       ->capture_default_str();

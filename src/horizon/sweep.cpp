@@ -169,7 +169,9 @@ class SweepEngine final : public HorizonEngine {
  public:
   explicit SweepEngine(const HorizonParams& p) : p_(p) {
     if (p_.radius != 0.0) {
-      throw Error("--radius is not supported by --method sweep, which is exact over the whole raster");
+      throw Error(
+          "--radius is not supported by --method sweep (the default), which is exact over the whole raster; use "
+          "--method march or sampled for a limited radius");
     }
   }
   std::string_view name() const override { return "sweep"; }

@@ -85,7 +85,7 @@ TEST_F(CliErrors, UndeclaredNanIsNodataWithAWarning) {
 
 TEST_F(CliErrors, ZeroOrNegativeRadius) {
   for (const char* radius : {"0", "-5"}) {
-    const RunResult r = run_skyview("svf " + good + " " + dir + "/o.tif --radius " + radius, dir);
+    const RunResult r = run_skyview("svf " + good + " " + dir + "/o.tif --method march --radius " + radius, dir);
     EXPECT_NE(r.exit_code, 0) << radius;
     EXPECT_NE(r.err.find("radius"), std::string::npos) << r.err;
   }
@@ -103,6 +103,11 @@ TEST_F(CliErrors, ExistingOutputIsKeptWithoutOverwrite) {
   for (const auto& e : std::filesystem::directory_iterator(dir))
     files += e.path().filename().string().find("skyview-tmp") != std::string::npos;
   EXPECT_EQ(files, 0);
+}
+
+TEST_F(CliErrors, RadiusWithTheDefaultSweepSaysWhichMethodsTakeOne) {
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --radius 100", dir),
+                        "--method march or sampled");
 }
 
 TEST_F(CliErrors, UnknownMethodBandAndFormat) {
