@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <unistd.h>
 
 #include "skyview/horizon_engine.h"
 #include "skyview/raster_io.h"
@@ -37,8 +38,15 @@ inline CellResult run_cell(const Terrain& t, int col, int row, const std::string
           out.openness_negative(0, 0)};
 }
 
+// A fresh folder per test and process: ctest runs tests in parallel.
 inline std::string temp_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("skyview-test-" + name);
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string test = info ? std::string(info->test_suite_name()) + "." + info->name() : "none";
+  for (char& ch : test) {
+    if (ch == '/') ch = '_';
+  }
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("skyview-test-" + name + "-" + test + "-" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir.string();
