@@ -1,0 +1,50 @@
+#pragma once
+// The height raster every other command reads, built from what a city provides: a terrain
+// model, LiDAR point clouds and building footprints, on one grid the user chooses.
+// Combination rule: DSM = max(terrain, buildings, gridded returns), cell by cell, ignoring
+// whichever is missing there.
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "skyview/georeference.h"
+#include "skyview/grid.h"
+
+namespace skyview {
+
+struct DsmOptions {
+  std::vector<std::string> dems;            // any GDAL rasters, warped bilinearly onto the grid
+  std::vector<std::string> points;          // LAS 1.0-1.4 files
+  std::string footprints;                   // any OGR polygon layer (first layer)
+  std::string height_field;                 // building height attribute
+  std::string base_field;                   // optional: absolute base height attribute
+  bool absolute_heights = false;            // height_field is absolute, not above the terrain
+  std::string t_srs;                        // output CRS (default: first input's)
+  std::optional<std::array<double, 4>> te;  // xmin ymin xmax ymax in the output CRS
+  double res = 0.0;                         // metres (CRS units); 0 = the DEM's, else 1
+  std::string stat = "max";                 // max | mean | min for points
+  std::vector<int> classes;                 // empty = all returns
+  bool ground_only = false;                 // class 2 only
+  bool fill = false;                        // close nodata holes (GDALFillNodata)
+  double fill_distance = 20.0;              // cells
+  double z_scale = 1.0;                     // applied to DEM heights
+};
+
+struct DsmReport {
+  std::uint64_t points_read = 0, points_used = 0;
+  std::int64_t cells_from_points = 0, cells_filled = 0;
+  int footprints_burned = 0, footprints_repaired = 0, footprints_skipped = 0, footprints_from_cloud = 0;
+};
+
+struct DsmResult {
+  GeoReference georef;
+  Grid<float> dsm, dtm;  // NaN = nodata; dtm empty when no terrain was given
+  DsmReport report;
+};
+
+// Throws skyview::Error (one line) for missing or unreadable inputs, empty clouds, a vector
+// without polygons, a missing height field, CRSs that cannot be related, or an empty grid.
+DsmResult build_dsm(const DsmOptions& options);
+
+}  // namespace skyview

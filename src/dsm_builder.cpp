@@ -1,0 +1,364 @@
+#include "skyview/dsm_builder.h"
+
+#include <gdal_alg.h>
+#include <gdal_priv.h>
+#include <gdal_utils.h>
+#include <ogrsf_frmts.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include "skyview/error.h"
+#include "skyview/las_file.h"
+#include "skyview/raster_io.h"
+
+namespace skyview {
+
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+struct CtDeleter {
+  void operator()(OGRCoordinateTransformation* t) const { OGRCoordinateTransformation::DestroyCT(t); }
+};
+using TransformPtr = std::unique_ptr<OGRCoordinateTransformation, CtDeleter>;
+
+OGRSpatialReference srs_from(const std::string& wkt_or_user, const std::string& what) {
+  OGRSpatialReference s;
+  if (s.SetFromUserInput(wkt_or_user.c_str()) != OGRERR_NONE) throw Error("cannot understand the CRS of " + what);
+  s.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  return s;
+}
+
+// Transform from `from` to `to`, or null when they are the same CRS.
+TransformPtr transform(const OGRSpatialReference& from, const OGRSpatialReference& to, const std::string& what) {
+  if (from.IsSame(&to)) return nullptr;
+  TransformPtr t(OGRCreateCoordinateTransformation(&from, &to));
+  if (!t) throw Error("cannot transform " + what + " to the output CRS");
+  return t;
+}
+
+struct Extent {
+  double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
+  void add(double x, double y) {
+    x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+  }
+  bool empty() const { return !(x1 > x0 && y1 > y0); }
+};
+
+void add_box(Extent& e, double x0, double y0, double x1, double y1, OGRCoordinateTransformation* t) {
+  for (int i = 0; i <= 8; ++i) {  // corners and edge midpoints survive curved reprojections better
+    double xs[3] = {x0, 0.5 * (x0 + x1), x1}, ys[3] = {y0, 0.5 * (y0 + y1), y1};
+    double x = xs[i % 3], y = ys[i / 3];
+    if (t && !t->Transform(1, &x, &y)) continue;
+    e.add(x, y);
+  }
+}
+
+GDALDatasetUniquePtr open_raster(const std::string& path) {
+  init_gdal();
+  GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  if (!ds) throw Error("cannot open '" + path + "' as a raster");
+  return ds;
+}
+
+}  // namespace
+
+DsmResult build_dsm(const DsmOptions& o) {
+  init_gdal();
+  if (o.dems.empty() && o.points.empty() && o.footprints.empty()) {
+    throw Error("nothing to build from: give --dem, --points or --footprints");
+  }
+  if (o.stat != "max" && o.stat != "mean" && o.stat != "min") {
+    throw Error("--stat must be max, mean or min (idw is not implemented yet)");
+  }
+  // Inputs and their CRSs.
+  std::vector<LasReader> clouds;
+  for (const auto& p : o.points) clouds.push_back(LasReader::open_file(p));
+  std::string first_crs;
+  for (const auto& d : o.dems) {
+    if (first_crs.empty()) first_crs = open_raster(d)->GetProjectionRef();
+  }
+  for (const auto& c : clouds) {
+    if (first_crs.empty()) first_crs = c.header().crs_wkt;
+  }
+  GDALDatasetUniquePtr vector;
+  OGRLayer* layer = nullptr;
+  if (!o.footprints.empty()) {
+    vector.reset(GDALDataset::Open(o.footprints.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+    if (!vector || vector->GetLayerCount() == 0) throw Error("cannot open '" + o.footprints + "' as a vector layer");
+    layer = vector->GetLayer(0);
+    const OGRwkbGeometryType g = wkbFlatten(layer->GetGeomType());
+    if (g != wkbPolygon && g != wkbMultiPolygon && g != wkbUnknown) {
+      throw Error("'" + o.footprints + "' holds no polygons (its first layer is " + OGRGeometryTypeToName(g) + ")");
+    }
+    if (!o.height_field.empty() && layer->GetLayerDefn()->GetFieldIndex(o.height_field.c_str()) < 0) {
+      throw Error("'" + o.footprints + "' has no field '" + o.height_field + "'");
+    }
+    if (!o.base_field.empty() && layer->GetLayerDefn()->GetFieldIndex(o.base_field.c_str()) < 0) {
+      throw Error("'" + o.footprints + "' has no field '" + o.base_field + "'");
+    }
+    if (first_crs.empty() && layer->GetSpatialRef()) {
+      char* w = nullptr;
+      layer->GetSpatialRef()->exportToWkt(&w);
+      first_crs = w ? w : "";
+      CPLFree(w);
+    }
+  }
+  const std::string out_crs = !o.t_srs.empty() ? o.t_srs : first_crs;
+  if (out_crs.empty()) throw Error("no input carries a CRS; give --t_srs");
+  const OGRSpatialReference target = srs_from(out_crs, "--t_srs");
+
+  // The grid: extent from --te or the inputs, snapped to the resolution.
+  double res = o.res;
+  Extent ext;
+  for (const auto& d : o.dems) {
+    auto ds = open_raster(d);
+    double gt[6];
+    ds->GetGeoTransform(gt);
+    if (res <= 0) res = std::abs(gt[1]);
+    const OGRSpatialReference s = srs_from(ds->GetProjectionRef(), "'" + d + "'");
+    auto t = transform(s, target, "'" + d + "'");
+    add_box(ext, gt[0], gt[3] + gt[5] * ds->GetRasterYSize(), gt[0] + gt[1] * ds->GetRasterXSize(), gt[3], t.get());
+  }
+  for (std::size_t i = 0; i < clouds.size(); ++i) {
+    const LasHeader& h = clouds[i].header();
+    TransformPtr t;
+    if (!h.crs_wkt.empty()) t = transform(srs_from(h.crs_wkt, o.points[i]), target, "'" + o.points[i] + "'");
+    add_box(ext, h.min[0], h.min[1], h.max[0], h.max[1], t.get());
+  }
+  if (layer) {
+    OGREnvelope env;
+    if (layer->GetExtent(&env) == OGRERR_NONE) {
+      TransformPtr t;
+      if (layer->GetSpatialRef()) t = transform(*layer->GetSpatialRef(), target, "'" + o.footprints + "'");
+      add_box(ext, env.MinX, env.MinY, env.MaxX, env.MaxY, t.get());
+    }
+  }
+  if (res <= 0) res = 1.0;
+  if (o.te) ext = {(*o.te)[0], (*o.te)[1], (*o.te)[2], (*o.te)[3]};
+  if (ext.empty()) throw Error("the inputs cover no area (empty point cloud or extent)");
+  const double x0 = std::floor(ext.x0 / res) * res, y1 = std::ceil(ext.y1 / res) * res;
+  const int width = static_cast<int>(std::ceil((ext.x1 - x0) / res - 1e-9));
+  const int height = static_cast<int>(std::ceil((y1 - ext.y0) / res - 1e-9));
+  if (width < 1 || height < 1 || static_cast<double>(width) * height > 4e9) {
+    throw Error("the output grid would be " + std::to_string(width) + " x " + std::to_string(height) + " cells");
+  }
+  DsmResult out;
+  out.georef.has_geotransform = true;
+  out.georef.geotransform = {x0, res, 0, y1, 0, -res};
+  char* wkt = nullptr;
+  target.exportToWkt(&wkt);
+  out.georef.crs_wkt = wkt ? wkt : "";
+  CPLFree(wkt);
+  Grid<float> terrain(width, height, kNaN);
+
+  // Terrain: every DEM warped bilinearly onto the grid (later DEMs fill where earlier are nodata).
+  for (const auto& d : o.dems) {
+    auto src = open_raster(d);
+    GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
+    GDALDatasetUniquePtr dst(mem->Create("", width, height, 1, GDT_Float32, nullptr));
+    double gt[6] = {x0, res, 0, y1, 0, -res};
+    dst->SetGeoTransform(gt);
+    dst->SetProjection(out.georef.crs_wkt.c_str());
+    dst->GetRasterBand(1)->SetNoDataValue(-3.4e38);
+    dst->GetRasterBand(1)->Fill(-3.4e38);
+    const char* args[] = {"-r", "bilinear", "-dstnodata", "-3.4e38", nullptr};
+    GDALWarpAppOptions* wo = GDALWarpAppOptionsNew(const_cast<char**>(args), nullptr);
+    GDALDatasetH srcs[] = {src.get()};
+    int usage = 0;
+    GDALDatasetH r = GDALWarp(nullptr, dst.get(), 1, srcs, wo, &usage);
+    GDALWarpAppOptionsFree(wo);
+    if (!r || usage) throw Error("cannot warp '" + d + "' onto the output grid");
+    std::vector<float> v(static_cast<std::size_t>(width) * height);
+    if (dst->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, width, height, v.data(), width, height, GDT_Float32, 0, 0) !=
+        CE_None) {
+      throw Error("cannot read the warped '" + d + "'");
+    }
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      if (std::isnan(terrain.values()[i]) && v[i] > -1e38 && std::isfinite(v[i])) {
+        terrain.values()[i] = static_cast<float>(v[i] * o.z_scale);
+      }
+    }
+  }
+
+  // Footprint ids per cell (cell centre inside the polygon), burned before the points so that
+  // returns inside a footprint can give it a height.
+  Grid<float> footprint_id(width, height, 0.0f);
+  std::vector<double> fp_height, fp_base;
+  std::vector<std::vector<float>> fp_returns;
+  if (layer) {
+    TransformPtr t;
+    if (layer->GetSpatialRef()) t = transform(*layer->GetSpatialRef(), target, "'" + o.footprints + "'");
+    GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
+    GDALDatasetUniquePtr ids(mem->Create("", width, height, 1, GDT_Float32, nullptr));
+    double gt[6] = {x0, res, 0, y1, 0, -res};
+    ids->SetGeoTransform(gt);
+    ids->SetProjection(out.georef.crs_wkt.c_str());
+    std::vector<OGRGeometryH> geoms;
+    std::vector<double> burn;
+    layer->ResetReading();
+    int polygons = 0;
+    for (auto& feature : *layer) {
+      OGRGeometry* g = feature->GetGeometryRef();
+      if (!g) continue;
+      const OGRwkbGeometryType type = wkbFlatten(g->getGeometryType());
+      if (type != wkbPolygon && type != wkbMultiPolygon) continue;
+      ++polygons;
+      std::unique_ptr<OGRGeometry> geom(g->clone());
+      if (!geom->IsValid()) {
+        std::unique_ptr<OGRGeometry> fixed(geom->MakeValid());
+        if (!fixed || !fixed->IsValid()) {
+          ++out.report.footprints_skipped;
+          continue;
+        }
+        geom = std::move(fixed);
+        ++out.report.footprints_repaired;
+      }
+      if (t && geom->transform(t.get()) != OGRERR_NONE) {
+        ++out.report.footprints_skipped;
+        continue;
+      }
+      const int hf = o.height_field.empty() ? -1 : feature->GetFieldIndex(o.height_field.c_str());
+      const bool has_height = hf >= 0 && feature->IsFieldSetAndNotNull(hf);
+      fp_height.push_back(has_height ? feature->GetFieldAsDouble(hf) : std::numeric_limits<double>::quiet_NaN());
+      const int bf = o.base_field.empty() ? -1 : feature->GetFieldIndex(o.base_field.c_str());
+      fp_base.push_back(bf >= 0 && feature->IsFieldSetAndNotNull(bf) ? feature->GetFieldAsDouble(bf)
+                                                                     : std::numeric_limits<double>::quiet_NaN());
+      geoms.push_back(OGRGeometry::ToHandle(geom.release()));
+      burn.push_back(static_cast<double>(geoms.size()));
+    }
+    if (polygons == 0) throw Error("'" + o.footprints + "' holds no polygons");
+    int bands[] = {1};
+    if (!geoms.empty() &&
+        GDALRasterizeGeometries(ids.get(), 1, bands, static_cast<int>(geoms.size()), geoms.data(), nullptr, nullptr,
+                                burn.data(), nullptr, nullptr, nullptr) != CE_None) {
+      throw Error("cannot rasterise '" + o.footprints + "'");
+    }
+    for (OGRGeometryH g : geoms) OGR_G_DestroyGeometry(g);
+    if (ids->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, width, height, footprint_id.data(), width, height, GDT_Float32,
+                                        0, 0) != CE_None) {
+      throw Error("cannot read the rasterised footprints");
+    }
+    fp_returns.resize(fp_height.size());
+  }
+
+  // Points: streamed, filtered, reprojected and gridded.
+  Grid<float> pts(width, height, kNaN);
+  Grid<std::uint32_t> count(width, height, 0);
+  std::vector<double> sum(o.stat == "mean" ? static_cast<std::size_t>(width) * height : 0, 0.0);
+  for (std::size_t f = 0; f < clouds.size(); ++f) {
+    const LasHeader& h = clouds[f].header();
+    if (h.point_count == 0) throw Error("'" + o.points[f] + "' holds no points");
+    TransformPtr t;
+    if (!h.crs_wkt.empty()) t = transform(srs_from(h.crs_wkt, o.points[f]), target, "'" + o.points[f] + "'");
+    std::vector<double> xs, ys;
+    clouds[f].read_points([&](const std::vector<LasPoint>& chunk) {
+      out.report.points_read += chunk.size();
+      xs.resize(chunk.size());
+      ys.resize(chunk.size());
+      for (std::size_t i = 0; i < chunk.size(); ++i) xs[i] = chunk[i].x, ys[i] = chunk[i].y;
+      if (t) t->Transform(static_cast<int>(xs.size()), xs.data(), ys.data());
+      for (std::size_t i = 0; i < chunk.size(); ++i) {
+        const LasPoint& p = chunk[i];
+        const int c = static_cast<int>(std::floor((xs[i] - x0) / res)),
+                  r = static_cast<int>(std::floor((y1 - ys[i]) / res));
+        if (!pts.in_grid(c, r) || !std::isfinite(p.z)) continue;
+        const std::size_t k = pts.index(c, r);
+        const float id = footprint_id.values()[k];
+        if (id > 0 && std::isnan(fp_height[static_cast<std::size_t>(id) - 1])) {
+          fp_returns[static_cast<std::size_t>(id) - 1].push_back(static_cast<float>(p.z));
+        }
+        if (o.ground_only && p.classification != 2) continue;
+        if (!o.classes.empty() && std::find(o.classes.begin(), o.classes.end(), p.classification) == o.classes.end()) {
+          continue;
+        }
+        ++out.report.points_used;
+        float& v = pts.values()[k];
+        const float z = static_cast<float>(p.z);
+        if (o.stat == "max") v = std::isnan(v) ? z : std::max(v, z);
+        if (o.stat == "min") v = std::isnan(v) ? z : std::min(v, z);
+        if (o.stat == "mean") sum[k] += p.z;
+        ++count.values()[k];
+      }
+    });
+  }
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    if (count.values()[k] == 0) continue;
+    ++out.report.cells_from_points;
+    if (o.stat == "mean") pts.values()[k] = static_cast<float>(sum[k] / count.values()[k]);
+  }
+  if (!clouds.empty() && out.report.points_used == 0) {
+    throw Error("no point of the clouds falls on the grid after the class filter");
+  }
+
+  // Buildings on the terrain, then DSM = max(terrain, buildings, points).
+  out.dsm = Grid<float>(width, height, kNaN);
+  for (std::size_t k = 0; k < out.dsm.size(); ++k) {
+    float v = terrain.values()[k];
+    const float id = footprint_id.values()[k];
+    if (id > 0) {
+      const std::size_t f = static_cast<std::size_t>(id) - 1;
+      double top = std::numeric_limits<double>::quiet_NaN();
+      if (!std::isnan(fp_height[f])) {
+        if (!std::isnan(fp_base[f])) {
+          top = fp_base[f] + fp_height[f];
+        } else if (o.absolute_heights) {
+          top = fp_height[f];
+        } else if (!std::isnan(v)) {
+          top = v + fp_height[f];
+        }
+      }
+      if (!std::isnan(top)) v = std::isnan(v) ? static_cast<float>(top) : std::max(v, static_cast<float>(top));
+    }
+    const float p = pts.values()[k];
+    if (!std::isnan(p)) v = std::isnan(v) ? p : std::max(v, p);
+    out.dsm.values()[k] = v;
+  }
+  // Footprints without a height take the 90th percentile of the returns inside them.
+  for (std::size_t f = 0; f < fp_height.size(); ++f) {
+    if (!std::isnan(fp_height[f])) {
+      ++out.report.footprints_burned;
+      continue;
+    }
+    auto& z = fp_returns[f];
+    if (z.empty()) {
+      ++out.report.footprints_skipped;
+      continue;
+    }
+    std::nth_element(z.begin(), z.begin() + static_cast<std::ptrdiff_t>(0.9 * (z.size() - 1)), z.end());
+    const float top = z[static_cast<std::size_t>(0.9 * (z.size() - 1))];
+    for (std::size_t k = 0; k < out.dsm.size(); ++k) {
+      if (footprint_id.values()[k] == static_cast<float>(f + 1)) {
+        float& v = out.dsm.values()[k];
+        v = std::isnan(v) ? top : std::max(v, top);
+      }
+    }
+    ++out.report.footprints_from_cloud;
+  }
+  if (o.fill) {
+    GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
+    GDALDatasetUniquePtr ds(mem->Create("", width, height, 1, GDT_Float32, nullptr));
+    std::vector<float> v = out.dsm.values();
+    for (float& x : v) x = std::isnan(x) ? -3.4e38f : x;
+    GDALRasterBand* band = ds->GetRasterBand(1);
+    band->SetNoDataValue(-3.4e38);
+    if (band->RasterIO(GF_Write, 0, 0, width, height, v.data(), width, height, GDT_Float32, 0, 0) != CE_None ||
+        GDALFillNodata(band, nullptr, o.fill_distance, 0, 0, nullptr, nullptr, nullptr) != CE_None ||
+        band->RasterIO(GF_Read, 0, 0, width, height, v.data(), width, height, GDT_Float32, 0, 0) != CE_None) {
+      throw Error("filling nodata failed");
+    }
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      if (std::isnan(out.dsm.values()[k]) && v[k] > -1e38f) {
+        out.dsm.values()[k] = v[k];
+        ++out.report.cells_filled;
+      }
+    }
+  }
+  if (!o.dems.empty()) out.dtm = std::move(terrain);
+  return out;
+}
+
+}  // namespace skyview

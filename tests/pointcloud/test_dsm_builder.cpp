@@ -1,0 +1,189 @@
+// skyview dsm: statistics of known points, footprints on a flat DEM, courtyards, grids across
+// CRSs, and clear errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "skyview/dsm_builder.h"
+#include "skyview/error.h"
+#include "skyview/las_file.h"
+#include "skyview/raster_io.h"
+#include "skyview/synthetic.h"
+
+#include <cpl_conv.h>
+#include <ogr_spatialref.h>
+#include <unistd.h>
+
+using namespace skyview;
+
+namespace {
+
+std::string dir_for(const std::string& name) {
+  const auto d = std::filesystem::temp_directory_path() / ("skyview-dsm-" + name + "-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d.string();
+}
+
+std::string wkt(const char* user) {
+  init_gdal();
+  OGRSpatialReference s;
+  s.SetFromUserInput(user);
+  char* w = nullptr;
+  s.exportToWkt(&w);
+  std::string out = w;
+  CPLFree(w);
+  return out;
+}
+
+// A flat DEM at 100 m over [500000, 500100] x [6400000, 6400100] in UTM 33N, 1 m cells.
+std::string flat_dem(const std::string& dir) {
+  GeoReference g;
+  g.has_geotransform = true;
+  g.geotransform = {500000, 1, 0, 6400100, 0, -1};
+  g.crs_wkt = wkt("EPSG:32633");
+  Terrain t = rasterize([](double, double) { return 0.0; }, 100, 100, g, 100.0);
+  write_terrain(dir + "/dem.tif", t, {});
+  return dir + "/dem.tif";
+}
+
+void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+TEST(DsmBuilder, KnownPointsGiveKnownCellValuesForEachStatistic) {
+  const std::string dir = dir_for("stats");
+  // Three returns in cell (2, 1) of a 1 m grid anchored at (0, 10), one in cell (0, 0).
+  std::vector<LasPoint> pts = {{2.5, 8.5, 10.0, 0, 1, 1, 6},
+                               {2.2, 8.7, 13.0, 0, 1, 1, 6},
+                               {2.9, 8.1, 16.0, 0, 1, 1, 2},
+                               {0.5, 9.5, 5.0, 0, 1, 1, 2}};
+  LasWriteOptions o;
+  o.crs_wkt = wkt("EPSG:32633");
+  write_las(dir + "/p.las", pts, o);
+  for (const auto& [stat, expected] :
+       std::vector<std::pair<std::string, float>>{{"max", 16}, {"mean", 13}, {"min", 10}}) {
+    DsmOptions d;
+    d.points = {dir + "/p.las"};
+    d.stat = stat;
+    d.res = 1.0;
+    d.te = std::array<double, 4>{0, 0, 10, 10};
+    const DsmResult r = build_dsm(d);
+    EXPECT_EQ(r.dsm.width(), 10);
+    EXPECT_FLOAT_EQ(r.dsm(2, 1), expected) << stat;
+    EXPECT_FLOAT_EQ(r.dsm(0, 0), 5.0f) << stat;
+    EXPECT_TRUE(std::isnan(r.dsm(5, 5))) << stat;
+  }
+  DsmOptions ground;
+  ground.points = {dir + "/p.las"};
+  ground.ground_only = true;
+  ground.te = std::array<double, 4>{0, 0, 10, 10};
+  EXPECT_FLOAT_EQ(build_dsm(ground).dsm(2, 1), 16.0f);
+  DsmOptions buildings = ground;
+  buildings.ground_only = false;
+  buildings.classes = {6};
+  EXPECT_FLOAT_EQ(build_dsm(buildings).dsm(2, 1), 13.0f);
+}
+
+TEST(DsmBuilder, FootprintOnAFlatDemAndACourtyard) {
+  const std::string dir = dir_for("footprints");
+  const std::string dem = flat_dem(dir);
+  // A 20 m square building of height 20, and a 40 m block with a 10 m courtyard of height 15.
+  write_text(dir + "/b.geojson", R"({"type":"FeatureCollection",
+    "crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::32633"}},
+    "features":[
+     {"type":"Feature","properties":{"h":20},"geometry":{"type":"Polygon","coordinates":[[[500010,6400010],[500030,6400010],[500030,6400030],[500010,6400030],[500010,6400010]]]}},
+     {"type":"Feature","properties":{"h":15},"geometry":{"type":"Polygon","coordinates":[
+        [[500050,6400050],[500090,6400050],[500090,6400090],[500050,6400090],[500050,6400050]],
+        [[500065,6400065],[500075,6400065],[500075,6400075],[500065,6400075],[500065,6400065]]]}}]})");
+  DsmOptions d;
+  d.dems = {dem};
+  d.footprints = dir + "/b.geojson";
+  d.height_field = "h";
+  const DsmResult r = build_dsm(d);
+  ASSERT_EQ(r.dsm.width(), 100);
+  // Cell (c, r) has its centre at x = 500000 + c + 0.5, y = 6400100 - r - 0.5.
+  EXPECT_FLOAT_EQ(r.dsm(20, 80), 120.0f);  // inside the square
+  EXPECT_FLOAT_EQ(r.dsm(10, 89), 120.0f);  // first cell whose centre is inside
+  EXPECT_FLOAT_EQ(r.dsm(9, 89), 100.0f);   // centre outside: terrain
+  EXPECT_FLOAT_EQ(r.dsm(5, 5), 100.0f);
+  EXPECT_FLOAT_EQ(r.dsm(55, 45), 115.0f);  // block
+  EXPECT_FLOAT_EQ(r.dsm(70, 30), 100.0f);  // courtyard stays at terrain height
+  EXPECT_FLOAT_EQ(r.dtm(20, 80), 100.0f);
+  EXPECT_EQ(r.report.footprints_burned, 2);
+
+  DsmOptions missing = d;
+  missing.height_field = "height";
+  EXPECT_THROW(build_dsm(missing), Error);
+}
+
+TEST(DsmBuilder, UtmAndDegreesDemsLandOnTheSameGrid) {
+  const std::string dir = dir_for("crs");
+  const std::string utm = flat_dem(dir);
+  // The same area in EPSG:4326 with a gentle slope, warped onto the UTM grid by --t_srs/--te.
+  const std::string geo = dir + "/geo.tif";
+  {
+    GeoReference g;
+    g.has_geotransform = true;
+    g.geotransform = {14.99, 0.00005, 0, 57.75, 0, -0.00005};
+    g.crs_wkt = wkt("EPSG:4326");
+    write_terrain(geo, rasterize([](double e, double) { return 50.0 + 0.01 * e; }, 800, 800, g), {});
+  }
+  DsmOptions a;
+  a.dems = {utm};
+  DsmOptions b;
+  b.dems = {geo};
+  b.t_srs = "EPSG:32633";
+  b.te = std::array<double, 4>{500000, 6400000, 500100, 6400100};
+  b.res = 1.0;
+  const DsmResult ra = build_dsm(a), rb = build_dsm(b);
+  EXPECT_EQ(ra.georef.geotransform, rb.georef.geotransform);
+  EXPECT_EQ(ra.dsm.width(), rb.dsm.width());
+  EXPECT_FALSE(std::isnan(rb.dsm(50, 50)));
+}
+
+TEST(DsmBuilder, BadInputGivesClearErrors) {
+  const std::string dir = dir_for("errors");
+  LasWriteOptions o;
+  o.crs_wkt = wkt("EPSG:32633");
+  write_las(dir + "/empty.las", {}, o);
+  DsmOptions empty;
+  empty.points = {dir + "/empty.las"};
+  EXPECT_THROW(build_dsm(empty), Error);
+  write_text(dir + "/pts.geojson", R"({"type":"FeatureCollection","features":[
+     {"type":"Feature","properties":{"h":1},"geometry":{"type":"Point","coordinates":[1,2]}}]})");
+  DsmOptions no_polygons;
+  no_polygons.footprints = dir + "/pts.geojson";
+  no_polygons.t_srs = "EPSG:32633";
+  EXPECT_THROW(build_dsm(no_polygons), Error);
+  DsmOptions nothing;
+  EXPECT_THROW(build_dsm(nothing), Error);
+  DsmOptions missing;
+  missing.points = {dir + "/nope.las"};
+  EXPECT_THROW(build_dsm(missing), Error);
+  std::vector<LasPoint> pts = {{1, 1, 1, 0, 1, 1, 2}};
+  write_las(dir + "/nocrs.las", pts, {});
+  DsmOptions no_crs;
+  no_crs.points = {dir + "/nocrs.las"};
+  try {
+    build_dsm(no_crs);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--t_srs"), std::string::npos);
+  }
+}
+
+TEST(DsmBuilder, RealLidarSampleGridsAllItsPoints) {
+  const std::string path = std::string(SKYVIEW_SHARED_DIR) + "/sample_data/las/simple.las";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "../shared/sample_data is absent";
+  DsmOptions d;
+  d.points = {path};
+  d.res = 2.0;
+  d.t_srs = "EPSG:2994";  // the Autzen sample's Oregon Lambert (ft); the file itself carries no CRS
+  const DsmResult r = build_dsm(d);
+  EXPECT_EQ(r.report.points_read, 1065u);
+  EXPECT_EQ(r.report.points_used, 1065u);
+  EXPECT_GT(r.report.cells_from_points, 500);
+}
+
+}  // namespace

@@ -1,0 +1,98 @@
+// skyview dsm: one height raster from DEMs, LiDAR point clouds and building footprints.
+#include <cstdio>
+#include <sstream>
+
+#include "command.h"
+#include "skyview/dsm_builder.h"
+#include "skyview/error.h"
+#include "skyview/raster_io.h"
+#include "skyview/version.h"
+
+namespace skyview::cli {
+namespace {
+
+Runner setup(CLI::App& app) {
+  struct Options {
+    DsmOptions dsm;
+    std::string output, dtm, classes;
+    std::vector<double> te;
+    OutputOptions out;
+  };
+  auto o = std::make_shared<Options>();
+  app.add_option("output", o->output, "Output height raster")->required();
+  app.add_option("--dem", o->dsm.dems, "Terrain raster(s), any GDAL format and CRS (bilinear)");
+  app.add_option("--points", o->dsm.points, "LAS 1.0-1.4 point cloud(s)");
+  app.add_option("--footprints", o->dsm.footprints, "Building footprints, any OGR polygon layer");
+  app.add_option("--height-field", o->dsm.height_field, "Footprint height attribute (above the terrain)");
+  app.add_option("--base-field", o->dsm.base_field, "Footprint base height attribute (absolute)");
+  app.add_flag("--absolute-heights", o->dsm.absolute_heights, "The height field is absolute, not above the terrain");
+  app.add_option("--res", o->dsm.res, "Cell size in output CRS units (default: the DEM's, else 1)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--t_srs", o->dsm.t_srs, "Output CRS (default: the first input's)");
+  app.add_option("--te", o->te, "Output extent xmin ymin xmax ymax")->expected(4);
+  app.add_option("--stat", o->dsm.stat, "Per-cell statistic of the returns: max, mean, min")
+      ->check(CLI::IsMember({"max", "mean", "min"}))
+      ->capture_default_str();
+  app.add_option("--classes", o->classes, "Comma-separated LAS classes to keep (e.g. 2,6)");
+  app.add_flag("--ground-only", o->dsm.ground_only, "Keep ground returns (class 2) only");
+  app.add_flag("--fill", o->dsm.fill, "Close nodata holes (GDAL fill-nodata)");
+  app.add_option("--fill-distance", o->dsm.fill_distance, "Largest hole to close, in cells")->capture_default_str();
+  app.add_option("--z-scale", o->dsm.z_scale, "Vertical unit factor of the DEMs to metres")->capture_default_str();
+  app.add_option("--dtm", o->dtm, "Also write the terrain (the warped DEMs) here");
+  add_output_options(app, o->out);
+  app.footer(
+      "DSM = max(terrain, buildings, gridded returns) cell by cell. A footprint covers the cells whose centre "
+      "lies inside it; a footprint without height takes the 90th percentile of the returns inside it.");
+  return [o] {
+    check_output_writable(o->output, o->out.overwrite);
+    if (!o->dtm.empty()) check_output_writable(o->dtm, o->out.overwrite);
+    if (!o->te.empty()) o->dsm.te = std::array<double, 4>{o->te[0], o->te[1], o->te[2], o->te[3]};
+    std::stringstream in(o->classes);
+    for (std::string item; std::getline(in, item, ',');) {
+      try {
+        o->dsm.classes.push_back(std::stoi(item));
+      } catch (const std::exception&) {
+        throw Error("--classes takes comma-separated integers, not '" + item + "'");
+      }
+    }
+    const DsmResult r = build_dsm(o->dsm);
+    const DsmReport& rep = r.report;
+    WriteOptions wo;
+    wo.format = o->out.format;
+    wo.creation_options = o->out.creation_options;
+    wo.overwrite = o->out.overwrite;
+    wo.metadata = {{"SKYVIEW_VERSION", version()},
+                   {"SKYVIEW_COMMAND", command_line()},
+                   {"COMBINATION_RULE", "max(terrain, buildings, gridded returns)"},
+                   {"POINT_STATISTIC", o->dsm.stat},
+                   {"POINTS_READ", std::to_string(rep.points_read)},
+                   {"POINTS_USED", std::to_string(rep.points_used)},
+                   {"CELLS_FILLED", std::to_string(rep.cells_filled)},
+                   {"FOOTPRINTS_BURNED", std::to_string(rep.footprints_burned)},
+                   {"FOOTPRINTS_FROM_CLOUD", std::to_string(rep.footprints_from_cloud)},
+                   {"FOOTPRINTS_REPAIRED", std::to_string(rep.footprints_repaired)},
+                   {"FOOTPRINTS_SKIPPED", std::to_string(rep.footprints_skipped)}};
+    write_bands(o->output, r.dsm.width(), r.dsm.height(), r.georef, {{"height", "metre", r.dsm.data(), {}}}, wo);
+    if (!o->dtm.empty() && r.dtm.size() > 0) {
+      write_bands(o->dtm, r.dtm.width(), r.dtm.height(), r.georef, {{"terrain_height", "metre", r.dtm.data(), {}}}, wo);
+    }
+    if (!o->out.quiet) {
+      std::fprintf(stderr,
+                   "%dx%d cells; %llu of %llu points used; %d footprints burned, %d from the cloud, %d repaired, "
+                   "%d skipped; %lld cells filled\n",
+                   r.dsm.width(), r.dsm.height(), static_cast<unsigned long long>(rep.points_used),
+                   static_cast<unsigned long long>(rep.points_read), rep.footprints_burned, rep.footprints_from_cloud,
+                   rep.footprints_repaired, rep.footprints_skipped, static_cast<long long>(rep.cells_filled));
+    }
+    if (rep.footprints_skipped > 0) {
+      std::fprintf(stderr, "Warning: %d footprints were skipped (no height and no returns, or invalid)\n",
+                   rep.footprints_skipped);
+    }
+    return 0;
+  };
+}
+
+const Registration reg("dsm", "Height raster from DEMs, LAS point clouds and building footprints", setup);
+
+}  // namespace
+}  // namespace skyview::cli
