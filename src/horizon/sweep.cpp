@@ -93,7 +93,8 @@ void sweep_direction(const Terrain& terrain, const Window& window, double azimut
     const int i0 = std::min(static_cast<int>(x), minor_n - 1);
     const double fx = x - i0;
     const double z0 = zrow[i0 * minor_stride];
-    return fx > 0.0 ? z0 + fx * (zrow[(i0 + 1) * minor_stride] - z0) : z0;
+    // x may exceed minor_n - 1 by a rounding error: never read past the row.
+    return fx > 0.0 && i0 + 1 < minor_n ? z0 + fx * (zrow[(i0 + 1) * minor_stride] - z0) : z0;
   };
 
   for (int step = 0; step < major_n; ++step) {
