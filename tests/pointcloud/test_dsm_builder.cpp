@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/test_support.h"
 #include "skyview/dsm_builder.h"
 #include "skyview/error.h"
 #include "skyview/las_file.h"
@@ -27,16 +28,8 @@ std::string dir_for(const std::string& name) {
   return d.string();
 }
 
-std::string wkt(const char* user) {
-  init_gdal();
-  OGRSpatialReference s;
-  s.SetFromUserInput(user);
-  char* w = nullptr;
-  s.exportToWkt(&w);
-  std::string out = w;
-  CPLFree(w);
-  return out;
-}
+using skyview::test::wkt_of;
+constexpr auto wkt = wkt_of;
 
 // A flat DEM at 100 m over [500000, 500100] x [6400000, 6400100] in UTM 33N, 1 m cells.
 std::string flat_dem(const std::string& dir) {
