@@ -14,7 +14,9 @@ Runner setup(CLI::App& app) {
   app.footer("One band per direction, in degrees above the horizontal; band k is centred on azimuth 360*k/N.");
   return [o] {
     ThreadLimit limit(o->out.threads);
-    HorizonJob job = run_horizon_job(*o, "horizon");
+    HorizonJobOptions opts = *o;
+    opts.params.rays = 0;  // the ray cast's Monte-Carlo svf is not a horizon band
+    HorizonJob job = run_horizon_job(opts, "horizon");
     const int w = job.terrain.width(), h = job.terrain.height(), n = job.field.directions;
     std::vector<std::vector<float>> planes(n, std::vector<float>(static_cast<std::size_t>(w) * h));
     for (int r = 0; r < h; ++r) {
