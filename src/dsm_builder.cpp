@@ -267,9 +267,11 @@ DsmResult build_dsm(const DsmOptions& o) {
                   r = static_cast<int>(std::floor((y1 - ys[i]) / res));
         if (!pts.in_grid(c, r) || !std::isfinite(p.z)) continue;
         const std::size_t k = pts.index(c, r);
-        const float id = footprint_id.values()[k];
-        if (id > 0 && std::isnan(fp_height[static_cast<std::size_t>(id) - 1])) {
-          fp_returns[static_cast<std::size_t>(id) - 1].push_back(static_cast<float>(p.z));
+        if (!fp_height.empty()) {  // only footprints need this lookup (a cache miss per point)
+          const float id = footprint_id.values()[k];
+          if (id > 0 && std::isnan(fp_height[static_cast<std::size_t>(id) - 1])) {
+            fp_returns[static_cast<std::size_t>(id) - 1].push_back(static_cast<float>(p.z));
+          }
         }
         if (o.ground_only && p.classification != 2) continue;
         if (!o.classes.empty() && std::find(o.classes.begin(), o.classes.end(), p.classification) == o.classes.end()) {

@@ -161,6 +161,7 @@ void commit_dataset(GDALDataset* mem, const std::string& path, const std::string
   check_output_writable(path, overwrite);
   GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(format.c_str());
   if (!driver) throw Error("unknown output format '" + format + "' (see gdalinfo --formats)");
+  if (EQUAL(format.c_str(), "MEM")) throw Error("output format MEM writes no file; choose a file format");
   char** meta = driver->GetMetadata();
   if (!CSLFetchBoolean(meta, GDAL_DCAP_CREATECOPY, FALSE) && !CSLFetchBoolean(meta, GDAL_DCAP_CREATE, FALSE)) {
     throw Error("GDAL format '" + format + "' cannot write files");

@@ -46,6 +46,7 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
 
 HorizonJob run_horizon_job(const HorizonJobOptions& o, const std::string& command) {
   check_output_writable(o.output, o.out.overwrite);
+  if (o.out.format == "MEM") throw Error("output format MEM writes no file; choose a file format");
   HorizonJob job;
   job.edge = o.edge == "nodata" ? EdgeMode::nodata : EdgeMode::open;
   std::string method = o.method;

@@ -62,8 +62,8 @@ struct LineSample {
 // offset would look like a slope. Beyond them the cell, at its own height, takes its tangent to
 // the hulls of the two lines beside it, the slopes interpolated by its offset; line samples join their
 // hull only once they are more than kNearSteps behind the current step.
-void sweep_direction(const Terrain& terrain, const Window& window, double azimuth, double curvature, bool negate,
-                     float* plane) {
+void sweep_direction(const Terrain& terrain, const float* transposed, const Window& window, double azimuth,
+                     double curvature, bool negate, float* plane) {
   constexpr int kNearSteps = 8;
   const int W = terrain.width(), H = terrain.height();
   const Jacobian j = terrain.frame.at(terrain.origin_col + 0.5 * W, terrain.origin_row + 0.5 * H);
@@ -86,8 +86,9 @@ void sweep_direction(const Terrain& terrain, const Window& window, double azimut
   const long m_min = -max_drift, lines = minor_n + 2 * max_drift + 2;
   std::vector<std::vector<HullPoint>> hulls(static_cast<std::size_t>(lines));
   std::vector<std::vector<LineSample>> pending(kNearSteps + 1);  // samples not yet in a hull, by step
-  const float* z = terrain.heights.data();
-  const std::ptrdiff_t minor_stride = by_rows ? 1 : W, major_stride = by_rows ? W : 1;
+  // Lines that advance by columns read the transposed copy, so every line read is contiguous.
+  const float* z = by_rows ? terrain.heights.data() : transposed;
+  const std::ptrdiff_t minor_stride = 1, major_stride = by_rows ? W : H;
   auto height = [&](int major, double x) -> double {  // linear along the minor axis; x in range
     const float* zrow = z + major * major_stride;
     const int i0 = std::min(static_cast<int>(x), minor_n - 1);
@@ -196,11 +197,16 @@ class SweepEngine final : public HorizonEngine {
     const int passes = p_.lower ? 2 : 1;
     const std::size_t cells = static_cast<std::size_t>(window.cols) * window.rows;
     const std::uint64_t per_pass = static_cast<std::uint64_t>(window.cells()) / std::max(1, p_.directions * passes);
+    const int W = terrain.width(), H = terrain.height();
+    std::vector<float> transposed(static_cast<std::size_t>(W) * H);
+    for (int r = 0; r < H; ++r) {
+      for (int col = 0; col < W; ++col) transposed[static_cast<std::size_t>(col) * H + r] = terrain.heights(col, r);
+    }
     tbb::parallel_for(0, p_.directions * passes, [&](int task) {
       const int k = task % p_.directions;
       const bool negate = task >= p_.directions;
       std::vector<float> plane(cells, std::numeric_limits<float>::quiet_NaN());
-      sweep_direction(terrain, window, sector_azimuth(k, p_.directions), c, negate, plane.data());
+      sweep_direction(terrain, transposed.data(), window, sector_azimuth(k, p_.directions), c, negate, plane.data());
       float* dst = negate ? out.lower.data() : out.upper.data();
       for (std::size_t i = 0; i < cells; ++i) dst[i * p_.directions + k] = plane[i];
       progress.advance(per_pass);
