@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "golden_site.h"
 #include "skyview/civil_time.h"
 #include "skyview/error.h"
 #include "skyview/solar_position.h"
@@ -13,17 +14,7 @@ using namespace skyview;
 
 namespace {
 
-Site golden_site() {
-  Site s;
-  s.latitude_deg = 39.742476;
-  s.longitude_deg = -105.1786;
-  s.elevation_m = 1830.14;
-  s.pressure_mbar = 820.0;
-  s.temperature_c = 11.0;
-  s.delta_t_s = 67.0;
-  s.delta_ut1_s = 0.0;
-  return s;
-}
+using skyview::test::golden_site;
 
 double golden_time() { return parse_time("2003-10-17T12:30:30-07:00").unix_utc; }
 

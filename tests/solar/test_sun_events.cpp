@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "golden_site.h"
 #include "skyview/civil_time.h"
 #include "skyview/sun_events.h"
 #include "skyview/time_parse.h"
@@ -13,16 +14,7 @@ using namespace skyview;
 
 namespace {
 
-Site golden_site() {
-  Site s;
-  s.latitude_deg = 39.742476;
-  s.longitude_deg = -105.1786;
-  s.elevation_m = 1830.14;
-  s.pressure_mbar = 820.0;
-  s.temperature_c = 11.0;
-  s.delta_t_s = 67.0;
-  return s;
-}
+using skyview::test::golden_site;
 
 // Local seconds since local midnight of an instant, for an offset in hours.
 double local_seconds_of_day(double unix_time, double offset_h) {
