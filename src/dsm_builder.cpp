@@ -11,7 +11,9 @@
 #include <memory>
 
 #include "skyview/error.h"
-#include "skyview/las_file.h"
+#include "skyview/point_cloud.h"
+#include "skyview/point_filters.h"
+#include "skyview/point_gridder.h"
 #include "skyview/raster_io.h"
 
 namespace skyview {
@@ -71,18 +73,20 @@ DsmResult build_dsm(const DsmOptions& o) {
   if (o.dems.empty() && o.points.empty() && o.footprints.empty()) {
     throw Error("nothing to build from: give --dem, --points or --footprints");
   }
-  if (o.stat != "max" && o.stat != "mean" && o.stat != "min") {
-    throw Error("--stat must be max, mean or min (idw is not implemented yet)");
-  }
+  const GridStatistic stat = parse_grid_statistic(o.stat);
   // Inputs and their CRSs.
-  std::vector<LasReader> clouds;
-  for (const auto& p : o.points) clouds.push_back(LasReader::open_file(p));
+  std::vector<std::unique_ptr<PointCloud>> clouds;
+  for (const auto& p : o.points) {
+    clouds.push_back(open_point_cloud(p));
+    if (clouds.back()->point_count() == 0) throw Error("'" + p + "' holds no points");
+  }
+  auto cloud_crs = [&](const PointCloud& c) { return o.s_srs.empty() ? c.crs_wkt() : o.s_srs; };
   std::string first_crs;
   for (const auto& d : o.dems) {
     if (first_crs.empty()) first_crs = open_raster(d)->GetProjectionRef();
   }
   for (const auto& c : clouds) {
-    if (first_crs.empty()) first_crs = c.header().crs_wkt;
+    if (first_crs.empty()) first_crs = cloud_crs(*c);
   }
   GDALDatasetUniquePtr vector;
   OGRLayer* layer = nullptr;
@@ -123,11 +127,11 @@ DsmResult build_dsm(const DsmOptions& o) {
     auto t = transform(s, target, "'" + d + "'");
     add_box(ext, gt[0], gt[3] + gt[5] * ds->GetRasterYSize(), gt[0] + gt[1] * ds->GetRasterXSize(), gt[3], t.get());
   }
-  for (std::size_t i = 0; i < clouds.size(); ++i) {
-    const LasHeader& h = clouds[i].header();
+  for (const auto& c : clouds) {
     TransformPtr t;
-    if (!h.crs_wkt.empty()) t = transform(srs_from(h.crs_wkt, o.points[i]), target, "'" + o.points[i] + "'");
-    add_box(ext, h.min[0], h.min[1], h.max[0], h.max[1], t.get());
+    if (!cloud_crs(*c).empty()) t = transform(srs_from(cloud_crs(*c), c->path()), target, "'" + c->path() + "'");
+    const double* b = c->bounds();
+    add_box(ext, b[0], b[1], b[2], b[3], t.get());
   }
   if (layer) {
     OGREnvelope env;
@@ -245,53 +249,86 @@ DsmResult build_dsm(const DsmOptions& o) {
     fp_returns.resize(fp_height.size());
   }
 
-  // Points: streamed, filtered, reprojected and gridded.
-  Grid<float> pts(width, height, kNaN);
-  Grid<std::uint32_t> count(width, height, 0);
-  std::vector<double> sum(o.stat == "mean" ? static_cast<std::size_t>(width) * height : 0, 0.0);
-  for (std::size_t f = 0; f < clouds.size(); ++f) {
-    const LasHeader& h = clouds[f].header();
-    if (h.point_count == 0) throw Error("'" + o.points[f] + "' holds no points");
-    TransformPtr t;
-    if (!h.crs_wkt.empty()) t = transform(srs_from(h.crs_wkt, o.points[f]), target, "'" + o.points[f] + "'");
-    std::vector<double> xs, ys;
-    clouds[f].read_points([&](const std::vector<LasPoint>& chunk) {
-      out.report.points_read += chunk.size();
-      xs.resize(chunk.size());
-      ys.resize(chunk.size());
-      for (std::size_t i = 0; i < chunk.size(); ++i) xs[i] = chunk[i].x, ys[i] = chunk[i].y;
-      if (t) t->Transform(static_cast<int>(xs.size()), xs.data(), ys.data());
-      for (std::size_t i = 0; i < chunk.size(); ++i) {
-        const LasPoint& p = chunk[i];
-        const int c = static_cast<int>(std::floor((xs[i] - x0) / res)),
-                  r = static_cast<int>(std::floor((y1 - ys[i]) / res));
-        if (!pts.in_grid(c, r) || !std::isfinite(p.z)) continue;
-        const std::size_t k = pts.index(c, r);
-        if (!fp_height.empty()) {  // only footprints need this lookup (a cache miss per point)
-          const float id = footprint_id.values()[k];
-          if (id > 0 && std::isnan(fp_height[static_cast<std::size_t>(id) - 1])) {
-            fp_returns[static_cast<std::size_t>(id) - 1].push_back(static_cast<float>(p.z));
-          }
-        }
-        if (o.ground_only && p.classification != 2) continue;
-        if (!o.classes.empty() && std::find(o.classes.begin(), o.classes.end(), p.classification) == o.classes.end()) {
-          continue;
-        }
-        ++out.report.points_used;
-        float& v = pts.values()[k];
-        const float z = static_cast<float>(p.z);
-        if (o.stat == "max") v = std::isnan(v) ? z : std::max(v, z);
-        if (o.stat == "min") v = std::isnan(v) ? z : std::min(v, z);
-        if (o.stat == "mean") sum[k] += p.z;
-        ++count.values()[k];
+  // Points: streamed (or held in memory for the PCL filters), reprojected, filtered, gridded.
+  PointGridder gridder({width, height, x0, y1, res}, stat, o.idw_radius, o.idw_power);
+  auto keep_class = [&](int cls, bool ground) {
+    if (o.ground_only && !ground) return false;
+    return o.classes.empty() || std::find(o.classes.begin(), o.classes.end(), cls) != o.classes.end();
+  };
+  // Every return, after denoising and before the class filters, may give its footprint a height.
+  auto accept = [&](double x, double y, double z, int cls, bool ground) {
+    const double fc = (x - x0) / res, fr = (y1 - y) / res;
+    if (!(fc >= 0 && fr >= 0 && fc < width && fr < height) || !std::isfinite(z)) return;
+    if (!fp_height.empty()) {  // only footprints need this lookup (a cache miss per return)
+      const float id = footprint_id(static_cast<int>(fc), static_cast<int>(fr));
+      if (id > 0 && std::isnan(fp_height[static_cast<std::size_t>(id) - 1])) {
+        fp_returns[static_cast<std::size_t>(id) - 1].push_back(static_cast<float>(z));
       }
+    }
+    if (!keep_class(cls, ground)) return;
+    ++out.report.points_used;
+    gridder.add(x, y, static_cast<float>(z));
+  };
+  for (const auto& cloud : clouds) {
+    const std::string name = "'" + cloud->path() + "'";
+    TransformPtr t;
+    if (!cloud_crs(*cloud).empty()) t = transform(srs_from(cloud_crs(*cloud), cloud->path()), target, name);
+    auto each_point = [&](auto&& f) {  // f(x, y, point) in the output CRS
+      std::vector<double> xs, ys;
+      cloud->read_points([&](const std::vector<LasPoint>& chunk) {
+        xs.resize(chunk.size());
+        ys.resize(chunk.size());
+        for (std::size_t i = 0; i < chunk.size(); ++i) xs[i] = chunk[i].x, ys[i] = chunk[i].y;
+        if (t) t->Transform(static_cast<int>(xs.size()), xs.data(), ys.data());
+        for (std::size_t i = 0; i < chunk.size(); ++i) f(xs[i], ys[i], chunk[i]);
+      });
+    };
+    // Bare earth comes from class 2 when the cloud has it, else from the morphological filter.
+    bool has_ground_class = false;
+    if (o.ground_only)
+      each_point([&](double, double, const LasPoint& p) { has_ground_class |= p.classification == 2; });
+    const bool filter_ground = o.ground_only && !has_ground_class;
+    if (o.ground_only) out.report.ground_source = filter_ground ? "morphological filter" : "class 2";
+    if (!o.denoise && !filter_ground) {
+      each_point([&](double x, double y, const LasPoint& p) {
+        ++out.report.points_read;
+        accept(x, y, p.z, p.classification, p.classification == 2);
+      });
+      continue;
+    }
+    // The PCL filters need the whole cloud: 25 bytes per return here and about as much in PCL.
+    std::vector<XyzPoint> pts;
+    std::vector<std::uint8_t> cls;
+    pts.reserve(static_cast<std::size_t>(cloud->point_count()));
+    each_point([&](double x, double y, const LasPoint& p) {
+      ++out.report.points_read;
+      if (!std::isfinite(p.z)) return;
+      pts.push_back({x, y, p.z});
+      cls.push_back(p.classification);
     });
+    if (o.denoise) {
+      const std::vector<char> keep = statistical_inliers(pts, o.denoise_k, o.denoise_sigma);
+      std::size_t n = 0;
+      for (std::size_t i = 0; i < pts.size(); ++i) {
+        if (keep[i]) pts[n] = pts[i], cls[n] = cls[i], ++n;
+      }
+      out.report.points_removed_as_noise += pts.size() - n;
+      pts.resize(n);
+      cls.resize(n);
+    }
+    std::vector<char> ground(pts.size(), 0);
+    if (filter_ground) {
+      GroundFilterParams gp;
+      gp.cell = res;
+      gp.max_window = o.ground_window;
+      gp.slope = o.ground_slope;
+      ground = morphological_ground(pts, gp);
+    } else {
+      for (std::size_t i = 0; i < pts.size(); ++i) ground[i] = cls[i] == 2;
+    }
+    for (std::size_t i = 0; i < pts.size(); ++i) accept(pts[i].x, pts[i].y, pts[i].z, cls[i], ground[i]);
   }
-  for (std::size_t k = 0; k < pts.size(); ++k) {
-    if (count.values()[k] == 0) continue;
-    ++out.report.cells_from_points;
-    if (o.stat == "mean") pts.values()[k] = static_cast<float>(sum[k] / count.values()[k]);
-  }
+  Grid<float> pts = gridder.finish(&out.report.cells_from_points);
   if (!clouds.empty() && out.report.points_used == 0) {
     throw Error("no point of the clouds falls on the grid after the class filter");
   }

@@ -21,7 +21,8 @@ Runner setup(CLI::App& app) {
   auto o = std::make_shared<Options>();
   app.add_option("output", o->output, "Output height raster")->required();
   app.add_option("--dem", o->dsm.dems, "Terrain raster(s), any GDAL format and CRS (bilinear)");
-  app.add_option("--points", o->dsm.points, "LAS 1.0-1.4 point cloud(s)");
+  app.add_option("--points", o->dsm.points, "Point cloud(s): LAS 1.0-1.4, PLY, PCD, or x y z text (.xyz/.txt/.csv)");
+  app.add_option("--s_srs", o->dsm.s_srs, "CRS of the point clouds (default: each file's own; needed for PLY/PCD/XYZ)");
   app.add_option("--footprints", o->dsm.footprints, "Building footprints, any OGR polygon layer");
   app.add_option("--height-field", o->dsm.height_field, "Footprint height attribute (above the terrain)");
   app.add_option("--base-field", o->dsm.base_field, "Footprint base height attribute (absolute)");
@@ -30,11 +31,31 @@ Runner setup(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   app.add_option("--t_srs", o->dsm.t_srs, "Output CRS (default: the first input's)");
   app.add_option("--te", o->te, "Output extent xmin ymin xmax ymax")->expected(4);
-  app.add_option("--stat", o->dsm.stat, "Per-cell statistic of the returns: max, mean, min")
-      ->check(CLI::IsMember({"max", "mean", "min"}))
+  app.add_option("--stat", o->dsm.stat, "Per-cell statistic of the returns: max, mean, min, idw")
+      ->check(CLI::IsMember({"max", "mean", "min", "idw"}))
+      ->capture_default_str();
+  app.add_option("--idw-radius", o->dsm.idw_radius, "IDW: returns within this many cells of a cell centre")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--idw-power", o->dsm.idw_power, "IDW: weight 1/distance^power")
+      ->check(CLI::PositiveNumber)
       ->capture_default_str();
   app.add_option("--classes", o->classes, "Comma-separated LAS classes to keep (e.g. 2,6)");
-  app.add_flag("--ground-only", o->dsm.ground_only, "Keep ground returns (class 2) only");
+  app.add_flag("--ground-only", o->dsm.ground_only,
+               "Keep ground returns: class 2, or PCL's progressive morphological filter for unclassified clouds");
+  app.add_option("--ground-window", o->dsm.ground_window, "Morphological filter: largest window (m), > widest building")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--ground-slope", o->dsm.ground_slope, "Morphological filter: terrain slope (rise over run)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_flag("--denoise", o->dsm.denoise, "Remove isolated returns (birds, multipath) with PCL's statistical filter");
+  app.add_option("--denoise-k", o->dsm.denoise_k, "Denoise: neighbours per return")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--denoise-sigma", o->dsm.denoise_sigma, "Denoise: standard deviations beyond the mean distance")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app.add_flag("--fill", o->dsm.fill, "Close nodata holes (GDAL fill-nodata)");
   app.add_option("--fill-distance", o->dsm.fill_distance, "Largest hole to close, in cells")->capture_default_str();
   app.add_option("--z-scale", o->dsm.z_scale, "Vertical unit factor of the DEMs to metres")->capture_default_str();
@@ -67,6 +88,8 @@ Runner setup(CLI::App& app) {
                    {"POINT_STATISTIC", o->dsm.stat},
                    {"POINTS_READ", std::to_string(rep.points_read)},
                    {"POINTS_USED", std::to_string(rep.points_used)},
+                   {"POINTS_REMOVED_AS_NOISE", std::to_string(rep.points_removed_as_noise)},
+                   {"GROUND_FROM", rep.ground_source.empty() ? "all returns" : rep.ground_source},
                    {"CELLS_FILLED", std::to_string(rep.cells_filled)},
                    {"FOOTPRINTS_BURNED", std::to_string(rep.footprints_burned)},
                    {"FOOTPRINTS_FROM_CLOUD", std::to_string(rep.footprints_from_cloud)},
@@ -78,11 +101,14 @@ Runner setup(CLI::App& app) {
     }
     if (!o->out.quiet) {
       std::fprintf(stderr,
-                   "%dx%d cells; %llu of %llu points used; %d footprints burned, %d from the cloud, %d repaired, "
+                   "%dx%d cells; %llu of %llu points used (%llu removed as noise); %d footprints burned, %d from the "
+                   "cloud, %d repaired, "
                    "%d skipped; %lld cells filled\n",
                    r.dsm.width(), r.dsm.height(), static_cast<unsigned long long>(rep.points_used),
-                   static_cast<unsigned long long>(rep.points_read), rep.footprints_burned, rep.footprints_from_cloud,
-                   rep.footprints_repaired, rep.footprints_skipped, static_cast<long long>(rep.cells_filled));
+                   static_cast<unsigned long long>(rep.points_read),
+                   static_cast<unsigned long long>(rep.points_removed_as_noise), rep.footprints_burned,
+                   rep.footprints_from_cloud, rep.footprints_repaired, rep.footprints_skipped,
+                   static_cast<long long>(rep.cells_filled));
     }
     if (rep.footprints_skipped > 0) {
       std::fprintf(stderr, "Warning: %d footprints were skipped (no height and no returns, or invalid)\n",

@@ -15,7 +15,8 @@ namespace skyview {
 
 struct DsmOptions {
   std::vector<std::string> dems;            // any GDAL rasters, warped bilinearly onto the grid
-  std::vector<std::string> points;          // LAS 1.0-1.4 files
+  std::vector<std::string> points;          // LAS, PLY, PCD or XYZ text clouds
+  std::string s_srs;                        // CRS of the clouds (default: each file's own)
   std::string footprints;                   // any OGR polygon layer (first layer)
   std::string height_field;                 // building height attribute
   std::string base_field;                   // optional: absolute base height attribute
@@ -23,16 +24,24 @@ struct DsmOptions {
   std::string t_srs;                        // output CRS (default: first input's)
   std::optional<std::array<double, 4>> te;  // xmin ymin xmax ymax in the output CRS
   double res = 0.0;                         // metres (CRS units); 0 = the DEM's, else 1
-  std::string stat = "max";                 // max | mean | min for points
-  std::vector<int> classes;                 // empty = all returns
-  bool ground_only = false;                 // class 2 only
-  bool fill = false;                        // close nodata holes (GDALFillNodata)
-  double fill_distance = 20.0;              // cells
-  double z_scale = 1.0;                     // applied to DEM heights
+  std::string stat = "max";                 // max | mean | min | idw for points
+  double idw_radius = 1.0;                  // cells
+  double idw_power = 2.0;
+  std::vector<int> classes;     // empty = all returns
+  bool ground_only = false;     // class 2, or the morphological filter when unclassified
+  double ground_window = 40.0;  // metres: the filter's largest window
+  double ground_slope = 1.0;    // the filter's terrain slope (rise over run)
+  bool denoise = false;         // statistical outlier removal before gridding
+  int denoise_k = 8;            // neighbours
+  double denoise_sigma = 3.0;   // standard deviations
+  bool fill = false;            // close nodata holes (GDALFillNodata)
+  double fill_distance = 20.0;  // cells
+  double z_scale = 1.0;         // applied to DEM heights
 };
 
 struct DsmReport {
-  std::uint64_t points_read = 0, points_used = 0;
+  std::uint64_t points_read = 0, points_used = 0, points_removed_as_noise = 0;
+  std::string ground_source;  // "class 2" or "morphological filter" with --ground-only
   std::int64_t cells_from_points = 0, cells_filled = 0;
   int footprints_burned = 0, footprints_repaired = 0, footprints_skipped = 0, footprints_from_cloud = 0;
 };

@@ -26,6 +26,7 @@ struct LasReader::Source {
   // Throws a bare Error; callers add the file name.
   void read(std::uint64_t offset, std::size_t n, void* out) const {
     if (offset > size || n > size - offset) throw Error("read beyond the end of the data");
+    if (n == 0) return;  // an empty record has no buffer (memcpy with null is undefined even for 0 bytes)
     if (memory) {
       std::memcpy(out, memory + offset, n);
       return;

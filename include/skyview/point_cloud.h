@@ -1,0 +1,50 @@
+#pragma once
+// Point clouds of every supported format behind one streaming interface, so the DSM builder
+// grids them all the same way: LAS 1.0-1.4 (read here, see las_file.h), PLY and PCD (read with
+// PCL, which loads a whole file), and plain XYZ text (streamed).
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "skyview/las_file.h"
+
+namespace skyview {
+
+class PointCloud {
+ public:
+  virtual ~PointCloud() = default;
+
+  const std::string& path() const { return path_; }
+  // OGC WKT, or empty when the file carries no CRS.
+  const std::string& crs_wkt() const { return crs_wkt_; }
+  std::uint64_t point_count() const { return point_count_; }
+  // Bounding box of the points (min x, min y, max x, max y) in the file's CRS.
+  const double* bounds() const { return bounds_; }
+
+  // Calls `chunk` with up to `chunk_points` points at a time, in file order. Formats without
+  // classes report class 1 (unclassified); formats without returns report 1 of 1.
+  virtual void read_points(const std::function<void(const std::vector<LasPoint>&)>& chunk,
+                           std::size_t chunk_points = 1 << 20) const = 0;
+
+ protected:
+  explicit PointCloud(std::string path) : path_(std::move(path)) {}
+  std::string path_, crs_wkt_;
+  std::uint64_t point_count_ = 0;
+  double bounds_[4] = {0, 0, 0, 0};
+};
+
+// Opens `path` by its content (the LASF signature) or extension: .las/.laz, .ply, .pcd, and
+// .xyz/.txt/.csv text. Throws skyview::Error (one line) for unknown formats, unreadable or
+// corrupt files, and text lines that are not numbers.
+std::unique_ptr<PointCloud> open_point_cloud(const std::string& path);
+
+namespace detail {
+// Implementations, one file each; only open_point_cloud calls them.
+std::unique_ptr<PointCloud> open_las_cloud(const std::string& path);
+std::unique_ptr<PointCloud> open_text_cloud(const std::string& path);
+std::unique_ptr<PointCloud> open_pcl_cloud(const std::string& path);  // .ply, .pcd
+}  // namespace detail
+
+}  // namespace skyview

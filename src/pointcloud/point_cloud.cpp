@@ -1,0 +1,54 @@
+#include "skyview/point_cloud.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "skyview/error.h"
+
+namespace skyview {
+
+namespace {
+
+class LasCloud final : public PointCloud {
+ public:
+  explicit LasCloud(const std::string& path) : PointCloud(path), reader_(LasReader::open_file(path)) {
+    const LasHeader& h = reader_.header();
+    crs_wkt_ = h.crs_wkt;
+    point_count_ = h.point_count;
+    bounds_[0] = h.min[0], bounds_[1] = h.min[1], bounds_[2] = h.max[0], bounds_[3] = h.max[1];
+  }
+  void read_points(const std::function<void(const std::vector<LasPoint>&)>& chunk,
+                   std::size_t chunk_points) const override {
+    reader_.read_points(chunk, chunk_points);
+  }
+
+ private:
+  LasReader reader_;
+};
+
+std::string lower_extension(const std::string& path) {
+  std::string e = std::filesystem::path(path).extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return e;
+}
+
+}  // namespace
+
+std::unique_ptr<PointCloud> detail::open_las_cloud(const std::string& path) { return std::make_unique<LasCloud>(path); }
+
+std::unique_ptr<PointCloud> open_point_cloud(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error("cannot open '" + path + "': no such file or not readable");
+  char magic[4] = {};
+  in.read(magic, 4);
+  const std::string ext = lower_extension(path);
+  if (std::memcmp(magic, "LASF", 4) == 0 || ext == ".las" || ext == ".laz") return detail::open_las_cloud(path);
+  if (ext == ".ply" || ext == ".pcd") return detail::open_pcl_cloud(path);
+  if (ext == ".xyz" || ext == ".txt" || ext == ".csv" || ext == ".pts") return detail::open_text_cloud(path);
+  throw Error("'" + path + "': unknown point cloud format (supported: .las, .ply, .pcd, .xyz/.txt/.csv text)");
+}
+
+}  // namespace skyview
