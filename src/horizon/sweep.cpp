@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "earth_curvature.h"
+#include "fast_atan.h"
 #include "methods.h"
 #include "skyview/error.h"
 
@@ -31,21 +32,54 @@ struct HullPoint {
   double t, z;
 };
 
-// Slope of the tangent from p (nearer than every hull point) to an upper hull stored far-to-
-// near: slopes from an outside point along a convex chain are unimodal, so bisection finds it.
-inline double tangent_slope(const std::vector<HullPoint>& hull, const HullPoint& p) {
-  auto slope = [&](std::size_t i) { return (hull[i].z - p.z) / (hull[i].t - p.t); };
-  std::size_t lo = 0, hi = hull.size() - 1;
-  while (lo < hi) {
-    const std::size_t mid = (lo + hi) / 2;
-    if (slope(mid) < slope(mid + 1)) {
-      lo = mid + 1;
-    } else {
-      hi = mid;
-    }
-  }
-  return slope(lo);
+// The tangent from p (nearer than every hull point) to an upper hull stored far-to-near is
+// where slopes stop rising: slopes from an outside point along a convex chain are unimodal. Every
+// hull point lies ahead of p (t - p.t has one sign), so slopes compare by cross products.
+inline bool rises(const HullPoint& a, const HullPoint& b, const HullPoint& p) {
+  return (a.z - p.z) * (b.t - p.t) < (b.z - p.z) * (a.t - p.t);
 }
+
+// One line's hull, and the highest point it ever held: a bound on any tangent from below.
+struct LineHull {
+  std::vector<HullPoint> points;
+  double top = -std::numeric_limits<double>::infinity();
+
+  void push(const HullPoint& p) {
+    while (points.size() >= 2) {
+      const HullPoint& a = points[points.size() - 1];
+      const HullPoint& b = points[points.size() - 2];
+      if ((a.z - p.z) * (b.t - p.t) > (b.z - p.z) * (a.t - p.t)) break;
+      points.pop_back();
+    }
+    points.push_back(p);
+    top = std::max(top, p.z);
+  }
+
+  // Slope of the tangent from p. Slopes rise along the hull up to the tangent point T and fall
+  // after it, so "slope rises into i" holds exactly for i <= T. The search gallops from the
+  // near end, then bisects: over flat ground with Earth curvature nearly every sample is a hull
+  // vertex (the folded heights form a dome), the tangent is close to the viewer, and the near
+  // end is the part of the hull just written, still in cache.
+  double tangent_slope(const HullPoint& p) const {
+    const HullPoint* h = points.data();
+    const std::size_t n = points.size();
+    std::size_t j = n - 1, above = n;  // indices >= above lie past the tangent
+    for (std::size_t step = 1; j > 0 && !rises(h[j - 1], h[j], p); step *= 2) {
+      above = j;
+      j = j > step ? j - step : 0;
+    }
+    std::size_t lo = j, hi = above - 1;
+    while (lo < hi) {
+      const std::size_t mid = (lo + hi + 1) / 2;
+      if (rises(h[mid - 1], h[mid], p)) {
+        lo = mid;
+      } else {
+        hi = mid - 1;
+      }
+    }
+    return (h[lo].z - p.z) / (h[lo].t - p.t);
+  }
+};
 
 struct LineSample {
   long line;
@@ -60,8 +94,13 @@ struct LineSample {
 // ray runs between two lines at a constant offset. Its first kNearSteps crossings are read
 // exactly, as the march does: near terrain moves the angle most, and there a line's sideways
 // offset would look like a slope. Beyond them the cell, at its own height, takes its tangent to
-// the hulls of the two lines beside it, the slopes interpolated by its offset; line samples join their
-// hull only once they are more than kNearSteps behind the current step.
+// the hulls of the two lines beside it, the slopes interpolated by its offset; line samples join
+// their hull only once they are more than kNearSteps behind the current step.
+//
+// A row is done in passes over contiguous arrays: the near field one crossing at a time for the
+// whole row (every cell of a row shares the crossing's fractional offset, so this vectorises),
+// then the far field per cell, skipped where the hulls' highest points cannot beat the near
+// field, then the arctangents.
 void sweep_direction(const Terrain& terrain, const float* transposed, const Window& window, double azimuth,
                      double curvature, bool negate, float* plane) {
   constexpr int kNearSteps = 8;
@@ -84,74 +123,112 @@ void sweep_direction(const Terrain& terrain, const float* transposed, const Wind
   const double k_step = k * toward;                                // minor drift per step ahead
   const long max_drift = static_cast<long>(std::ceil(std::abs(k) * (major_n - 1))) + 1;
   const long m_min = -max_drift, lines = minor_n + 2 * max_drift + 2;
-  std::vector<std::vector<HullPoint>> hulls(static_cast<std::size_t>(lines));
+  // Hull points are at least this far ahead of any cell that queries them.
+  const double far_gap = (kNearSteps + 1) * t_step - std::abs(t_minor);
+  std::vector<LineHull> hulls(static_cast<std::size_t>(lines));
   std::vector<std::vector<LineSample>> pending(kNearSteps + 1);  // samples not yet in a hull, by step
   // Lines that advance by columns read the transposed copy, so every line read is contiguous.
   const float* z = by_rows ? terrain.heights.data() : transposed;
-  const std::ptrdiff_t minor_stride = 1, major_stride = by_rows ? W : H;
+  const std::ptrdiff_t major_stride = by_rows ? W : H;
   auto height = [&](int major, double x) -> double {  // linear along the minor axis; x in range
     const float* zrow = z + major * major_stride;
     const int i0 = std::min(static_cast<int>(x), minor_n - 1);
     const double fx = x - i0;
-    const double z0 = zrow[i0 * minor_stride];
+    const double z0 = zrow[i0];
     // x may exceed minor_n - 1 by a rounding error: never read past the row.
-    return fx > 0.0 && i0 + 1 < minor_n ? z0 + fx * (zrow[(i0 + 1) * minor_stride] - z0) : z0;
+    return fx > 0.0 && i0 + 1 < minor_n ? z0 + fx * (zrow[i0 + 1] - z0) : z0;
   };
+  // The window's cells along the minor axis of a row.
+  const int lo = std::max(0, by_rows ? window.col0 : window.row0);
+  const int hi = std::min(minor_n, by_rows ? window.col0 + window.cols : window.row0 + window.rows);
+  std::vector<double> best(static_cast<std::size_t>(minor_n));
 
   for (int step = 0; step < major_n; ++step) {
     const int major = ahead_is_low ? step : major_n - 1 - step;
     const double shift = major * k;  // line m sits at minor position m + shift
     // Samples from more than kNearSteps steps back join their line's hull.
-    for (const LineSample& s : pending[step % (kNearSteps + 1)]) {
-      auto& hull = hulls[static_cast<std::size_t>(s.line - m_min)];
-      const HullPoint& p = s.point;
-      while (hull.size() >= 2) {
-        const HullPoint& a = hull[hull.size() - 1];
-        const HullPoint& b = hull[hull.size() - 2];
-        if ((a.z - p.z) * (b.t - p.t) > (b.z - p.z) * (a.t - p.t)) break;
-        hull.pop_back();
-      }
-      hull.push_back(p);
-    }
+    for (const LineSample& s : pending[step % (kNearSteps + 1)])
+      hulls[static_cast<std::size_t>(s.line - m_min)].push(s.point);
     pending[step % (kNearSteps + 1)].clear();
 
+    const int window_major = by_rows ? major - window.row0 : major - window.col0;
+    const bool in_window = window_major >= 0 && window_major < (by_rows ? window.rows : window.cols);
     const float* zrow = z + major * major_stride;
-    for (int minor = 0; minor < minor_n; ++minor) {
-      const int col = by_rows ? minor : major, row = by_rows ? major : minor;
-      const int wc = col - window.col0, wr = row - window.row0;
-      if (wc < 0 || wr < 0 || wc >= window.cols || wr >= window.rows) continue;
-      const float zc = zrow[minor * minor_stride];
-      if (std::isnan(zc)) continue;
-      const double t = major * t_major + minor * t_minor;
-      double best = -std::numeric_limits<double>::infinity();
-      // Near field: the cell's own ray, crossing by crossing.
+    if (in_window && lo < hi) {
+      // Near field: the cells' own rays, one crossing at a time for the whole row. NaN heights
+      // lose every comparison, so nodata never occludes.
+      std::fill(best.begin() + lo, best.begin() + hi, -std::numeric_limits<double>::infinity());
       for (int s = 1; s <= kNearSteps; ++s) {
         const int mj = major + toward * s;
-        const double x = minor + s * k_step;
-        if (mj < 0 || mj >= major_n || x < 0.0 || x > minor_n - 1) break;
-        const double zs = height(mj, x);
-        if (std::isnan(zs)) continue;
-        const double d = s * t_step;
-        best = std::max(best, (sign * zs - sign * zc - c * d * d) / d);
+        if (mj < 0 || mj >= major_n) break;
+        const double off = s * k_step;
+        const int i_off = static_cast<int>(std::floor(off));
+        const double f = off - i_off;
+        // Cells whose crossing stays inside the row: 0 <= minor + off <= minor_n - 1.
+        const int a = std::max(lo, static_cast<int>(std::ceil(-off)));
+        const int b = std::min(hi, static_cast<int>(std::floor(minor_n - 1 - off)) + 1);
+        const float* zs = z + mj * major_stride + i_off;
+        const double d = s * t_step, inv_d = 1.0 / d, drop = c * d;
+        double* bst = best.data();
+        if (f > 0.0) {
+          const int b1 = std::min(b, minor_n - 1 - i_off);  // the right neighbour exists
+          for (int m = a; m < b1; ++m) {
+            const double zi = zs[m] + f * (static_cast<double>(zs[m + 1]) - zs[m]);
+            const double v = sign * (zi - zrow[m]) * inv_d - drop;
+            bst[m] = v > bst[m] ? v : bst[m];
+          }
+          for (int m = std::max(a, b1); m < b; ++m) {
+            const double v = sign * (static_cast<double>(zs[m]) - zrow[m]) * inv_d - drop;
+            bst[m] = v > bst[m] ? v : bst[m];
+          }
+        } else {
+          for (int m = a; m < b; ++m) {
+            const double v = sign * (static_cast<double>(zs[m]) - zrow[m]) * inv_d - drop;
+            bst[m] = v > bst[m] ? v : bst[m];
+          }
+        }
       }
       // Far field: tangents to the two neighbouring lines' hulls.
-      const double u = minor - shift;
-      const long m0 = static_cast<long>(std::floor(u));
-      const double f = u - m0;
-      const HullPoint p{t, sign * zc - c * t * t};
-      // Slopes, not angles, are interpolated: one arctangent per cell and direction.
-      double far = 0.0, weight = 0.0;
-      for (int side = 0; side < 2; ++side) {
-        const double w = side == 0 ? 1.0 - f : f;
-        const auto& hull = hulls[static_cast<std::size_t>(m0 + side - m_min)];
-        if (w == 0.0 || hull.empty()) continue;
-        far += w * (tangent_slope(hull, p) + 2.0 * c * t);
-        weight += w;
+      for (int minor = lo; minor < hi; ++minor) {
+        const float zc = zrow[minor];
+        if (std::isnan(zc)) continue;
+        const double t = major * t_major + minor * t_minor;
+        const double u = minor - shift;
+        const long m0 = static_cast<long>(std::floor(u));
+        const double fu = u - m0;
+        const HullPoint p{t, sign * zc - c * t * t};
+        LineHull& h0 = hulls[static_cast<std::size_t>(m0 - m_min)];
+        LineHull& h1 = hulls[static_cast<std::size_t>(m0 + 1 - m_min)];
+        double& near = best[static_cast<std::size_t>(minor)];
+        // The far slope of a line is at most its highest point over the smallest gap.
+        const double rise = std::max(h0.top, h1.top) - p.z;
+        const double bound = (rise > 0.0 ? rise / far_gap : 0.0) + 2.0 * c * t;
+        if (near >= bound) continue;
+        // Slopes, not angles, are interpolated: one arctangent per cell and direction.
+        double far = 0.0, weight = 0.0;
+        if (fu < 1.0 && !h0.points.empty()) {
+          far += (1.0 - fu) * (h0.tangent_slope(p) + 2.0 * c * t);
+          weight += 1.0 - fu;
+        }
+        if (fu > 0.0 && !h1.points.empty()) {
+          far += fu * (h1.tangent_slope(p) + 2.0 * c * t);
+          weight += fu;
+        }
+        if (weight > 0.0) near = std::max(near, far / weight);
       }
-      if (weight > 0.0) best = std::max(best, far / weight);
-      // Nothing ahead on either side: terrain beyond the raster does not occlude.
-      const double angle = std::isinf(best) ? 0.0 : std::atan(best);
-      plane[static_cast<std::size_t>(wr) * window.cols + wc] = static_cast<float>(sign * angle);
+      // Angles; nothing ahead on either side (-inf) means open: terrain beyond the raster does
+      // not occlude. Nodata cells keep the plane's NaN.
+      const std::size_t stride = by_rows ? 1 : static_cast<std::size_t>(window.cols);
+      float* out = plane + (by_rows ? static_cast<std::size_t>(major - window.row0) * window.cols +
+                                          static_cast<std::size_t>(lo - window.col0)
+                                    : static_cast<std::size_t>(lo - window.row0) * window.cols +
+                                          static_cast<std::size_t>(major - window.col0));
+      for (int minor = lo; minor < hi; ++minor, out += stride) {
+        const double v = best[static_cast<std::size_t>(minor)];
+        const float angle =
+            static_cast<float>(v == -std::numeric_limits<double>::infinity() ? 0.0 : sign * fast_atan(v));
+        if (!std::isnan(zrow[minor])) *out = angle;  // no load: the plane's lines are far apart
+      }
     }
     // This step's line samples wait kNearSteps steps before joining the hulls.
     auto& mine = pending[(step + kNearSteps + 1) % (kNearSteps + 1)];
