@@ -3,6 +3,7 @@
 #include "skyview/error.h"
 #include "skyview/raster_io.h"
 #include "skyview/synthetic.h"
+#include "skyview/synthetic_district.h"
 
 #include <cpl_conv.h>
 #include <ogr_spatialref.h>
@@ -18,12 +19,15 @@ Runner setup(CLI::App& app) {
     int size = 401;
     double cell = 1.0, x0 = 500000.0, y0 = 6400000.0, base = 0.0;
     std::uint64_t seed = 1;
+    double density = 2.0;
+    int birds = 5;
     OutputOptions out;
   };
   auto o = std::make_shared<Options>();
-  app.add_option("kind", o->kind, "city, mountains, canyon, pit, plane")
+  app.add_option("kind", o->kind,
+                 "city, mountains, canyon, pit, plane (rasters); lidar (LAS) or footprints (vector) of a district")
       ->required()
-      ->check(CLI::IsMember({"city", "mountains", "canyon", "pit", "plane"}));
+      ->check(CLI::IsMember({"city", "mountains", "canyon", "pit", "plane", "lidar", "footprints"}));
   app.add_option("output", o->output, "Output raster")->required();
   app.add_option("--size", o->size, "Cells per side")->capture_default_str()->check(CLI::Range(3, 20000));
   app.add_option("--cell", o->cell, "Cell size in metres")->capture_default_str()->check(CLI::PositiveNumber);
@@ -31,7 +35,14 @@ Runner setup(CLI::App& app) {
   app.add_option("--origin", o->x0, "Easting of the grid centre")->capture_default_str();
   app.add_option("--northing", o->y0, "Northing of the grid centre")->capture_default_str();
   app.add_option("--seed", o->seed, "Random seed of the synthetic layout")->capture_default_str();
+  app.add_option("--density", o->density, "lidar: returns per square metre")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_option("--birds", o->birds, "lidar: isolated noise returns high above the district")->capture_default_str();
   add_output_options(app, o->out);
+  app.footer(
+      "lidar and footprints describe the same district of size x cell metres around the origin: 3 x 3 blocks, "
+      "the middle one with a courtyard, the north-east one without a height attribute, two trees, a few birds.");
   return [o] {
     check_output_writable(o->output, o->out.overwrite);
     GeoReference g = local_grid(o->size, o->size, o->cell);
@@ -43,6 +54,20 @@ Runner setup(CLI::App& app) {
     srs.exportToWkt(&wkt);
     g.crs_wkt = wkt;
     CPLFree(wkt);
+    if (o->kind == "lidar" || o->kind == "footprints") {
+      const double side = o->size * o->cell;
+      const SyntheticDistrict d = synthetic_district(o->x0 - 0.5 * side, o->y0 - 0.5 * side, side, o->seed);
+      if (o->kind == "footprints") {
+        write_district_footprints(o->output, d, g.crs_wkt, o->out.overwrite);
+      } else {
+        LasWriteOptions lo;
+        lo.crs_wkt = g.crs_wkt;
+        lo.offset[0] = std::round(d.x0), lo.offset[1] = std::round(d.y0);
+        lo.scale[0] = lo.scale[1] = lo.scale[2] = 0.01;
+        write_las(o->output, district_lidar(d, o->density, o->birds, o->seed), lo);
+      }
+      return 0;
+    }
     HeightFunction f;
     if (o->kind == "city") f = synthetic_city(o->seed);
     if (o->kind == "mountains") f = synthetic_mountains(o->seed);

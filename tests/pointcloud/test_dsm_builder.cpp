@@ -12,6 +12,7 @@
 #include "skyview/las_file.h"
 #include "skyview/raster_io.h"
 #include "skyview/synthetic.h"
+#include "skyview/synthetic_district.h"
 
 #include <cpl_conv.h>
 #include <ogr_spatialref.h>
@@ -180,3 +181,41 @@ TEST(DsmBuilder, RealLidarSampleGridsAllItsPoints) {
 }
 
 }  // namespace
+
+TEST(DsmBuilder, SyntheticDistrictFromLidarAndFootprints) {
+  const std::string dir = dir_for("district");
+  const SyntheticDistrict d = synthetic_district(500000, 6400000, 96, 3);
+  const std::string crs = wkt("EPSG:32633");
+  LasWriteOptions lo;
+  lo.crs_wkt = crs;
+  lo.offset[0] = 500000, lo.offset[1] = 6400000;
+  write_las(dir + "/d.las", district_lidar(d, 4.0, 5, 3), lo);
+  write_district_footprints(dir + "/d.geojson", d, crs, false);
+  DsmOptions o;
+  o.points = {dir + "/d.las"};
+  o.footprints = dir + "/d.geojson";
+  o.height_field = "height";
+  o.base_field = "base";
+  o.denoise = true;
+  o.res = 1.0;
+  o.te = std::array<double, 4>{500000, 6400000, 500096, 6400096};
+  const DsmResult r = build_dsm(o);
+  EXPECT_EQ(r.report.footprints_burned, 8);
+  EXPECT_EQ(r.report.footprints_from_cloud, 1);
+  EXPECT_GE(r.report.points_removed_as_noise, 5u);
+  auto cell_at = [&](double x, double y) { return r.dsm(static_cast<int>(x - 500000), static_cast<int>(6400096 - y)); };
+  double top = 0;
+  for (const DistrictBuilding& b : d.buildings) top = std::max(top, b.base + b.height);
+  for (float v : r.dsm.values()) EXPECT_LE(v, top + 0.011) << "a bird survived";
+  // South-west block: its footprint's top (the returns sit within 1 cm of it).
+  const DistrictBuilding& sw = d.buildings[0];
+  EXPECT_NEAR(cell_at(sw.outer[0][0] + 10.5, sw.outer[0][1] + 10.5), sw.base + sw.height, 0.011);
+  // The courtyard of the middle block stays at the ground.
+  const double cx = 500048.5, cy = 6400047.5;
+  EXPECT_NEAR(cell_at(cx, cy), d.ground(cx, cy), 0.02);
+  EXPECT_GT(cell_at(cx + 12, cy), d.ground(cx, cy) + 7.9);  // the ring of the block around it
+  // The north-east block has no height: the 90th percentile of its roof returns gives it one.
+  const DistrictBuilding& ne = d.buildings[8];
+  ASSERT_FALSE(ne.height_known);
+  EXPECT_NEAR(cell_at(ne.outer[0][0] + 10.5, ne.outer[0][1] + 10.5), ne.base + ne.height, 0.011);
+}
