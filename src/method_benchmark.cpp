@@ -19,6 +19,7 @@ std::string BenchConfig::label() const {
   std::ostringstream s;
   s << method << " d=" << params.directions;
   if (method == "sampled") s << " s=" << params.samples;
+  if (method == "sweep") s << " near=" << params.samples;
   if (method == "sampled" || method == "march") s << " r=" << (params.radius == 0 ? 500 : params.radius);
   return s.str();
 }
@@ -62,7 +63,16 @@ std::vector<BenchConfig> default_bench_grid(const std::vector<std::string>& meth
           grid.push_back(c);
         }
       }
-    } else if (m == "march" || m == "sweep") {
+    } else if (m == "sweep") {
+      for (int d : {8, 16, 32, 64}) {
+        for (int near : {8, 64, 128}) {
+          BenchConfig c{m, {}};
+          c.params.directions = d;
+          c.params.samples = near;
+          grid.push_back(c);
+        }
+      }
+    } else if (m == "march") {
       for (int d : {8, 16, 32, 64}) {
         BenchConfig c{m, {}};
         c.params.directions = d;

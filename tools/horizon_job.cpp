@@ -20,7 +20,9 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
                  "Horizon method: sweep (exact, unlimited radius), march, sampled, raycast (Embree reference)")
       ->capture_default_str();
   app.add_option("--directions", o.params.directions, "Number of azimuth directions")->capture_default_str();
-  app.add_option("--samples", o.params.samples, "Samples per direction (sampled)")->capture_default_str();
+  app.add_option("--samples", o.params.samples,
+                 "Per direction: samples (sampled, default 16) or exact near crossings (sweep, default 64)")
+      ->capture_default_str();
   app.add_option("--radius", o.params.radius,
                  "Search radius in metres for march and sampled (default 500); sweep is unlimited")
       ->check(CLI::PositiveNumber);
@@ -88,7 +90,8 @@ HorizonJob run_horizon_job(const HorizonJobOptions& o, const std::string& comman
     m["MAX_ERROR_REQUESTED"] = std::to_string(o.max_error);
     m["MAX_ERROR_CHOICE"] =
         choice->method + " with " + std::to_string(choice->entry.directions) + " directions" +
-        (choice->method == "sampled" ? " and " + std::to_string(choice->entry.samples) + " samples" : "");
+        (choice->method == "sampled" ? " and " + std::to_string(choice->entry.samples) + " samples" : "") +
+        (choice->method == "sweep" ? " and " + std::to_string(choice->entry.samples) + " exact near crossings" : "");
     m["MAX_ERROR_CALIBRATED_P99"] = std::to_string(choice->entry.worst_p99);
     m["MAX_ERROR_BASIS"] =
         "worst 99th-percentile |svf error| against a 64-direction ray cast over the calibration "

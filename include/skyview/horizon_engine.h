@@ -16,7 +16,8 @@ namespace skyview {
 
 struct HorizonParams {
   int directions = 16;             // azimuth sectors, the first centred on north, clockwise
-  int samples = 16;                // samples per direction (sampled method)
+  int samples = 0;                 // per direction: samples (sampled, default 16), exact near
+                                   // crossings before the hulls (sweep, default 64); 0 = default
   double radius = 0.0;             // search radius in metres; 0 = method default (unlimited for sweep)
   std::uint64_t seed = 0;          // per-cell rotation seed (sampled method)
   bool lower = false;              // also the lowest elevation angle per direction (negative openness)

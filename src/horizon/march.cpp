@@ -1,8 +1,9 @@
-// Marching along each direction through every row or column crossing up to the radius,
+// Marching along each direction through every row and column crossing up to the radius,
 // interpolating between cell centres: the classic exhaustive horizon search (as in
 // r.horizon, SAGA and RVT), slow but without sampling gaps.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "methods.h"
 #include "ray_scan.h"
@@ -12,13 +13,22 @@ namespace {
 
 struct EveryCrossing {
   double radius;
+  // Row and column crossings in order of distance: the shared mesh is linear inside each
+  // triangle with valley creases, so along a ray it peaks on grid lines, and only there.
   template <class Visit>
   void walk(double col_per_m, double row_per_m, double max_distance, double curvature, Visit&& visit) const {
-    // One step advances exactly one column or one row along the dominant axis.
-    const double step = 1.0 / std::max(std::abs(col_per_m), std::abs(row_per_m));
-    const long long n = static_cast<long long>(std::min(std::min(radius, max_distance) / step, 1e9));
-    for (long long i = 1; i <= n; ++i) {
-      const double d = i * step;
+    constexpr double kNever = std::numeric_limits<double>::infinity();
+    const double step_c = col_per_m != 0.0 ? 1.0 / std::abs(col_per_m) : kNever;
+    const double step_r = row_per_m != 0.0 ? 1.0 / std::abs(row_per_m) : kNever;
+    const double limit = std::min(radius, max_distance);
+    long long i = 1, j = 1;
+    for (;;) {
+      const double dc = i * step_c, dr = j * step_r;
+      const double d = std::min(dc, dr);
+      if (!(d <= limit)) return;
+      // A diagonal step crosses both lines at once (within rounding): one visit.
+      if (dc <= dr * (1.0 + 1e-12)) ++i;
+      if (dr <= dc * (1.0 + 1e-12)) ++j;
       if (!visit(d, 1.0 / d, curvature * d * d)) return;
     }
   }
