@@ -29,7 +29,12 @@ struct EveryCrossing {
       // A diagonal step crosses both lines at once (within rounding): one visit.
       if (dc <= dr * (1.0 + 1e-12)) ++i;
       if (dr <= dc * (1.0 + 1e-12)) ++j;
-      if (!visit(d, 1.0 / d, curvature * d * d)) return;
+      const double next = visit(d, 1.0 / d, curvature * d * d);
+      if (next < 0.0) return;
+      if (next > d) {  // skip to the first crossings beyond `next`
+        i = std::max(i, static_cast<long long>(std::min(next / step_c, 1e18)) + 1);
+        j = std::max(j, static_cast<long long>(std::min(next / step_r, 1e18)) + 1);
+      }
     }
   }
 };

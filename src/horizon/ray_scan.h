@@ -3,10 +3,17 @@
 // along each azimuth and keep the steepest (and, on request, the shallowest) slope to the
 // terrain. The methods differ only in where along the ray they look (a Placement policy).
 //
-// Early termination: once the ray is at distance d, no farther terrain can rise above
-// (z_max - z0 - c d^2) / d, so the walk stops as soon as that bound cannot beat the slope
-// already found. The bound only skips samples that cannot change the result, so results are
-// bit-identical with and without it.
+// Early termination, from a max-height pyramid of the buffer:
+// - top level: once the ray is at distance d, no farther terrain can rise above
+//   (z_max - z0 - c d^2) / d, so the walk stops as soon as that bound cannot beat the slope
+//   already found;
+// - lower levels (blocks of 32 and 8 cells, each with a one-cell border so that interpolated
+//   samples inside a block read only cells it covers): when the steepest slope found already
+//   clears a block's highest cell over the whole stretch of ray inside the block, the walk jumps
+//   to where the ray leaves it (the maximum-mipmap skip of heightfield ray tracers).
+// Both only skip samples that cannot change the result, so results are bit-identical with and
+// without them (tested). Block skips need the upper horizon alone: with the lowest angle
+// requested, only the top level applies.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -48,11 +55,39 @@ struct ScanSettings {
 // Settings shared by the ray methods, from their parameters (radius already defaulted).
 ScanSettings scan_settings(const HorizonParams& p, const Terrain& terrain);
 
+// Block maxima of the heights at one pyramid level: block (bx, by) covers cells
+// [bx B, bx B + B] x [by B, by B + B], borders included.
+struct MaxBlocks {
+  int size = 0, cols = 0;
+  std::vector<float> max;  // NaN-free; -inf for blocks of nodata only
+
+  MaxBlocks(const Terrain& t, int block) : size(block), cols((t.width() + block - 1) / block) {
+    const int rows = (t.height() + block - 1) / block;
+    max.assign(static_cast<std::size_t>(cols) * rows, -std::numeric_limits<float>::infinity());
+    for (int r = 0; r < t.height(); ++r) {
+      for (int c = 0; c < t.width(); ++c) {
+        const float z = t.heights(c, r);
+        if (std::isnan(z)) continue;
+        // A cell on a block border belongs to the blocks on both sides of it.
+        for (int by = std::max(0, (r - 1) / block); by <= r / block && by < rows; ++by) {
+          if (r < by * block || r > by * block + block) continue;
+          for (int bx = std::max(0, (c - 1) / block); bx <= c / block && bx < cols; ++bx) {
+            if (c < bx * block || c > bx * block + block) continue;
+            float& m = max[static_cast<std::size_t>(by) * cols + bx];
+            m = std::max(m, z);
+          }
+        }
+      }
+    }
+  }
+};
+
 // Placement must provide
 //   template <class Visit> void walk(double col_per_m, double row_per_m, double max_distance, double curvature,
 //                                    Visit&& visit) const;
 // calling visit(d, 1/d, curvature*d*d) for increasing distances d <= max_distance (where the ray
-// leaves the buffer) until visit returns false.
+// leaves the buffer). visit returns a negative number to stop, or a distance r >= d: the walk
+// goes on with its first sample farther than r.
 template <class Placement>
 void scan_rays(const Terrain& terrain, const Window& window, HorizonField& out, ProgressCounter& progress,
                const ScanSettings& s, const Placement& placement) {
@@ -76,6 +111,13 @@ void scan_rays(const Terrain& terrain, const Window& window, HorizonField& out, 
   const bool early = s.early_exit;
   constexpr double kInf = std::numeric_limits<double>::infinity();
   const double last_col = terrain.width() - 1, last_row = terrain.height() - 1;
+  const bool block_skips = early && !s.lower;
+  std::vector<MaxBlocks> levels;  // coarse first
+  if (block_skips) {
+    for (int b : {32, 8}) {
+      if (terrain.width() > 2 * b || terrain.height() > 2 * b) levels.emplace_back(terrain, b);
+    }
+  }
 
   tbb::parallel_for(tbb::blocked_range<int>(0, window.rows), [&](const tbb::blocked_range<int>& range) {
     for (int wr = range.begin(); wr != range.end(); ++wr) {
@@ -114,19 +156,33 @@ void scan_rays(const Terrain& terrain, const Window& window, HorizonField& out, 
           placement.walk(pc, pr, std::min(exit_c, exit_r) * (1.0 + 1e-12), c, [&](double d, double inv_d, double drop) {
             const double x = std::clamp(col + pc * d, 0.0, last_col), y = std::clamp(row + pr * d, 0.0, last_row);
             const double z = sampler.at(x, y);
-            if (std::isnan(z)) return true;
-            const double t = (z - z0 - drop) * inv_d;
-            max_t = std::max(max_t, t);
-            min_t = std::min(min_t, t);
+            if (!std::isnan(z)) {
+              const double t = (z - z0 - drop) * inv_d;
+              max_t = std::max(max_t, t);
+              min_t = std::min(min_t, t);
+            }
             if (early) {
               const double bound_hi = (above - drop) * inv_d;  // decreasing in d since above >= 0
               if (bound_hi <= max_t) {
-                if (!lo) return false;
+                if (!lo) return -1.0;
                 const double bound_lo = below * inv_d - c * s.max_distance;
-                if (bound_lo >= min_t) return false;
+                if (bound_lo >= min_t) return -1.0;
               }
             }
-            return true;
+            // The largest block around this sample whose cells cannot beat max_t anywhere on
+            // the ray's stretch through it (curvature only lowers them further).
+            for (const MaxBlocks& level : levels) {
+              const int bx = std::min(static_cast<int>(x) / level.size, level.cols - 1);
+              const int by = static_cast<int>(y) / level.size;
+              const double rise = level.max[static_cast<std::size_t>(by) * level.cols + bx] - z0;
+              const double x0 = bx * level.size, y0 = by * level.size;
+              const double leave_c = pc > 0 ? (x0 + level.size - col) / pc : (pc < 0 ? (x0 - col) / pc : kInf);
+              const double leave_r = pr > 0 ? (y0 + level.size - row) / pr : (pr < 0 ? (y0 - row) / pr : kInf);
+              const double leave = std::min(leave_c, leave_r);
+              // rise / d' over [d, leave] peaks at d when rise > 0 and at leave otherwise.
+              if (rise <= max_t * (rise > 0 ? d : leave)) return std::max(d, leave);
+            }
+            return d;
           });
           up[k] = std::isinf(max_t) ? 0.0f : static_cast<float>(std::atan(max_t));
           if (lo) lo[k] = std::isinf(min_t) ? 0.0f : static_cast<float>(std::atan(min_t));

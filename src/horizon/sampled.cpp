@@ -20,7 +20,9 @@ struct FixedDistances {
   void walk(double, double, double max_distance, double curvature, Visit&& visit) const {
     const std::size_t n = distance.size();
     for (std::size_t j = 0; j < n && distance[j] <= max_distance; ++j) {
-      if (!visit(distance[j], inverse[j], curvature * distance[j] * distance[j])) return;
+      const double next = visit(distance[j], inverse[j], curvature * distance[j] * distance[j]);
+      if (next < 0.0) return;
+      while (j + 1 < n && distance[j + 1] <= next) ++j;
     }
   }
 };
