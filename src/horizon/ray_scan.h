@@ -11,9 +11,9 @@
 //   samples inside a block read only cells it covers): when the steepest slope found already
 //   clears a block's highest cell over the whole stretch of ray inside the block, the walk jumps
 //   to where the ray leaves it (the maximum-mipmap skip of heightfield ray tracers).
-// Both only skip samples that cannot change the result, so results are bit-identical with and
-// without them (tested). Block skips need the upper horizon alone: with the lowest angle
-// requested, only the top level applies.
+// With the lowest angle requested, a block is skipped only when its lowest cell cannot go
+// below the shallowest slope found either. Both levels only skip samples that cannot change the
+// result, so results are bit-identical with and without them (tested).
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -55,15 +55,16 @@ struct ScanSettings {
 // Settings shared by the ray methods, from their parameters (radius already defaulted).
 ScanSettings scan_settings(const HorizonParams& p, const Terrain& terrain);
 
-// Block maxima of the heights at one pyramid level: block (bx, by) covers cells
+// Block extremes of the heights at one pyramid level: block (bx, by) covers cells
 // [bx B, bx B + B] x [by B, by B + B], borders included.
 struct MaxBlocks {
   int size = 0, cols = 0;
-  std::vector<float> max;  // NaN-free; -inf for blocks of nodata only
+  std::vector<float> max, min;  // NaN-free; -inf / +inf for blocks of nodata only
 
   MaxBlocks(const Terrain& t, int block) : size(block), cols((t.width() + block - 1) / block) {
     const int rows = (t.height() + block - 1) / block;
     max.assign(static_cast<std::size_t>(cols) * rows, -std::numeric_limits<float>::infinity());
+    min.assign(max.size(), std::numeric_limits<float>::infinity());
     for (int r = 0; r < t.height(); ++r) {
       for (int c = 0; c < t.width(); ++c) {
         const float z = t.heights(c, r);
@@ -73,8 +74,9 @@ struct MaxBlocks {
           if (r < by * block || r > by * block + block) continue;
           for (int bx = std::max(0, (c - 1) / block); bx <= c / block && bx < cols; ++bx) {
             if (c < bx * block || c > bx * block + block) continue;
-            float& m = max[static_cast<std::size_t>(by) * cols + bx];
-            m = std::max(m, z);
+            const std::size_t b = static_cast<std::size_t>(by) * cols + bx;
+            max[b] = std::max(max[b], z);
+            min[b] = std::min(min[b], z);
           }
         }
       }
@@ -111,9 +113,8 @@ void scan_rays(const Terrain& terrain, const Window& window, HorizonField& out, 
   const bool early = s.early_exit;
   constexpr double kInf = std::numeric_limits<double>::infinity();
   const double last_col = terrain.width() - 1, last_row = terrain.height() - 1;
-  const bool block_skips = early && !s.lower;
   std::vector<MaxBlocks> levels;  // coarse first
-  if (block_skips) {
+  if (early) {
     for (int b : {32, 8}) {
       if (terrain.width() > 2 * b || terrain.height() > 2 * b) levels.emplace_back(terrain, b);
     }
@@ -174,13 +175,20 @@ void scan_rays(const Terrain& terrain, const Window& window, HorizonField& out, 
             for (const MaxBlocks& level : levels) {
               const int bx = std::min(static_cast<int>(x) / level.size, level.cols - 1);
               const int by = static_cast<int>(y) / level.size;
-              const double rise = level.max[static_cast<std::size_t>(by) * level.cols + bx] - z0;
+              const std::size_t b = static_cast<std::size_t>(by) * level.cols + bx;
+              const double rise = level.max[b] - z0;
               const double x0 = bx * level.size, y0 = by * level.size;
               const double leave_c = pc > 0 ? (x0 + level.size - col) / pc : (pc < 0 ? (x0 - col) / pc : kInf);
               const double leave_r = pr > 0 ? (y0 + level.size - row) / pr : (pr < 0 ? (y0 - row) / pr : kInf);
               const double leave = std::min(leave_c, leave_r);
               // rise / d' over [d, leave] peaks at d when rise > 0 and at leave otherwise.
-              if (rise <= max_t * (rise > 0 ? d : leave)) return std::max(d, leave);
+              if (!(rise <= max_t * (rise > 0 ? d : leave))) continue;
+              if (lo) {
+                // (fall - c d'^2) / d' has no interior minimum on [d, leave]: check both ends.
+                const double fall = level.min[b] - z0;
+                if (!(std::min(fall / d - c * d, fall / leave - c * leave) >= min_t)) continue;
+              }
+              return std::max(d, leave);
             }
             return d;
           });
