@@ -17,7 +17,7 @@ def main():
         with open(path) as f:
             bench = json.load(f)
         for r in bench["results"]:
-            key = (r["method"], r["directions"], r["samples"] if r["method"] == "sampled" else 16)
+            key = (r["method"], r["directions"], r["samples"] if r["method"] in ("sampled", "sweep") else 16)
             cells = r["svf"]["cells"]
             entry = rows.setdefault(key, {"p99": [], "ns": []})
             entry["p99"].append(r["svf"]["p99_abs"])
