@@ -50,12 +50,21 @@ struct Extent {
   bool empty() const { return !(x1 > x0 && y1 > y0); }
 };
 
-void add_box(Extent& e, double x0, double y0, double x1, double y1, OGRCoordinateTransformation* t) {
-  for (int i = 0; i <= 8; ++i) {  // corners and edge midpoints survive curved reprojections better
+// Adds a box's corners and edge midpoints (they survive curved reprojections better); a box none
+// of whose points transforms is in a CRS its coordinates do not fit.
+void add_box(Extent& e, double x0, double y0, double x1, double y1, OGRCoordinateTransformation* t,
+             const std::string& what) {
+  int added = 0;
+  for (int i = 0; i <= 8; ++i) {
     double xs[3] = {x0, 0.5 * (x0 + x1), x1}, ys[3] = {y0, 0.5 * (y0 + y1), y1};
     double x = xs[i % 3], y = ys[i / 3];
-    if (t && !t->Transform(1, &x, &y)) continue;
+    if (t && (!t->Transform(1, &x, &y) || !std::isfinite(x) || !std::isfinite(y))) continue;
     e.add(x, y);
+    ++added;
+  }
+  if (added == 0) {
+    throw Error("the extent of " + what +
+                " cannot be transformed to the output CRS: are its coordinates in the CRS it declares (or --s_srs)?");
   }
 }
 
@@ -125,20 +134,21 @@ DsmResult build_dsm(const DsmOptions& o) {
     if (res <= 0) res = std::abs(gt[1]);
     const OGRSpatialReference s = srs_from(ds->GetProjectionRef(), "'" + d + "'");
     auto t = transform(s, target, "'" + d + "'");
-    add_box(ext, gt[0], gt[3] + gt[5] * ds->GetRasterYSize(), gt[0] + gt[1] * ds->GetRasterXSize(), gt[3], t.get());
+    add_box(ext, gt[0], gt[3] + gt[5] * ds->GetRasterYSize(), gt[0] + gt[1] * ds->GetRasterXSize(), gt[3], t.get(),
+            "'" + d + "'");
   }
   for (const auto& c : clouds) {
     TransformPtr t;
     if (!cloud_crs(*c).empty()) t = transform(srs_from(cloud_crs(*c), c->path()), target, "'" + c->path() + "'");
     const double* b = c->bounds();
-    add_box(ext, b[0], b[1], b[2], b[3], t.get());
+    add_box(ext, b[0], b[1], b[2], b[3], t.get(), "'" + c->path() + "'");
   }
   if (layer) {
     OGREnvelope env;
     if (layer->GetExtent(&env) == OGRERR_NONE) {
       TransformPtr t;
       if (layer->GetSpatialRef()) t = transform(*layer->GetSpatialRef(), target, "'" + o.footprints + "'");
-      add_box(ext, env.MinX, env.MinY, env.MaxX, env.MaxY, t.get());
+      add_box(ext, env.MinX, env.MinY, env.MaxX, env.MaxY, t.get(), "'" + o.footprints + "'");
     }
   }
   if (res <= 0) res = 1.0;
@@ -330,7 +340,9 @@ DsmResult build_dsm(const DsmOptions& o) {
   }
   Grid<float> pts = gridder.finish(&out.report.cells_from_points);
   if (!clouds.empty() && out.report.points_used == 0) {
-    throw Error("no point of the clouds falls on the grid after the class filter");
+    throw Error("none of the " + std::to_string(out.report.points_read) +
+                " returns falls on the output grid after the class filters (check the clouds' CRS or --s_srs, "
+                "--te, --classes)");
   }
 
   // Buildings on the terrain, then DSM = max(terrain, buildings, points).

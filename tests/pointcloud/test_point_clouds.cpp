@@ -94,6 +94,19 @@ TEST(PointClouds, BadCloudsGiveOneLineErrors) {
   EXPECT_THROW(open_point_cloud(dir + "/broken.ply"), Error);
   EXPECT_THROW(open_point_cloud(dir + "/missing.pcd"), Error);
   EXPECT_THROW(parse_grid_statistic("median"), Error);
+  // Coordinates that do not fit the CRS given for them: UTM metres declared as degrees.
+  write_text(dir + "/utm.xyz", "500010 6400010 5\n500020 6400020 6\n");
+  DsmOptions wrong = grid_10m(dir + "/utm.xyz");
+  wrong.s_srs = "EPSG:4326";
+  wrong.t_srs = "EPSG:32633";
+  wrong.te.reset();
+  try {
+    build_dsm(wrong);
+    FAIL() << "a cloud in the wrong CRS was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("utm.xyz"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("CRS"), std::string::npos) << e.what();
+  }
 }
 
 TEST(PointClouds, IdwWeighsReturnsByInverseSquaredDistance) {
