@@ -40,10 +40,14 @@ inline bool rises(const HullPoint& a, const HullPoint& b, const HullPoint& p) {
   return (a.z - p.z) * (b.t - p.t) < (b.z - p.z) * (a.t - p.t);
 }
 
-// One line's hull, and the highest point it ever held: a bound on any tangent from below.
+// One line's hull, the highest point it ever held (a bound on any tangent from below) and copies
+// of its two nearest points: the tangent is the nearest point over flat ground (where curvature
+// makes the profile a dome), and reading it here, from the array of lines that cells walk in
+// order, saves a cache miss into each line's own vector.
 struct LineHull {
   std::vector<HullPoint> points;
   double top = -std::numeric_limits<double>::infinity();
+  HullPoint last{0, 0}, before_last{0, 0};
 
   void push(const HullPoint& p) {
     while (points.size() >= 2) {
@@ -52,20 +56,24 @@ struct LineHull {
       if ((a.z - p.z) * (b.t - p.t) > (b.z - p.z) * (a.t - p.t)) break;
       points.pop_back();
     }
+    if (!points.empty()) before_last = points.back();
     points.push_back(p);
+    last = p;
     top = std::max(top, p.z);
   }
 
   // Slope of the tangent from p. Slopes rise along the hull up to the tangent point T and fall
-  // after it, so "slope rises into i" holds exactly for i <= T. The search gallops from the
-  // near end, then bisects: over flat ground with Earth curvature nearly every sample is a hull
-  // vertex (the folded heights form a dome), the tangent is close to the viewer, and the near
-  // end is the part of the hull just written, still in cache.
+  // after it, so "slope rises into i" holds exactly for i <= T. The nearest point is tried from
+  // the copies; otherwise the search gallops from the near end, then bisects: over flat ground with Earth curvature
+  // nearly every sample is a hull vertex (the folded heights form a dome), the tangent is close to the viewer, and the
+  // near end is the part of the hull just written, still in cache.
   double tangent_slope(const HullPoint& p) const {
-    const HullPoint* h = points.data();
     const std::size_t n = points.size();
-    std::size_t j = n - 1, above = n;  // indices >= above lie past the tangent
-    for (std::size_t step = 1; j > 0 && !rises(h[j - 1], h[j], p); step *= 2) {
+    if (n == 1 || rises(before_last, last, p)) return (last.z - p.z) / (last.t - p.t);
+    const HullPoint* h = points.data();
+    // The nearest point lies past the tangent (checked above); indices >= above do.
+    std::size_t j = n - 2, above = n - 1;
+    for (std::size_t step = 2; j > 0 && !rises(h[j - 1], h[j], p); step *= 2) {
       above = j;
       j = j > step ? j - step : 0;
     }
@@ -97,7 +105,8 @@ struct LineSample {
 };
 
 // One direction over the whole buffer; writes the horizon angle (or the lowest angle when
-// `negate`) for the window's cells into `plane` (window-sized, row-major).
+// `negate`) for the window's cells into `field`, window-sized and row-major with `stride` floats
+// per cell (the field's direction-interleaved layout; nodata cells are left alone).
 //
 // Parallel lines one cell apart cover the raster, sampled where they cross grid lines (each major
 // step, read linearly between neighbouring cell centres, and each minor grid line between steps,
@@ -113,8 +122,13 @@ struct LineSample {
 // whole row (every cell of a row shares the crossing's fractional offset, so this vectorises),
 // then the far field per cell, skipped where the hulls' highest points cannot beat the near
 // field, then the arctangents.
+// Compiled twice, for baseline x86-64 and for AVX2 (chosen at load time): the near field's row
+// loops then run eight floats per instruction.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
+__attribute__((target_clones("avx2", "default")))
+#endif
 void sweep_direction(const Terrain& terrain, const float* transposed, const Window& window, double azimuth,
-                     double curvature, bool negate, int near_steps, float* plane) {
+                     double curvature, bool negate, int near_steps, float* field, std::size_t stride) {
   const int W = terrain.width(), H = terrain.height();
   const Jacobian j = terrain.frame.at(terrain.origin_col + 0.5 * W, terrain.origin_row + 0.5 * H);
   double pc, pr;
@@ -248,17 +262,18 @@ void sweep_direction(const Terrain& terrain, const float* transposed, const Wind
         if (weight > 0.0) best[static_cast<std::size_t>(minor)] = static_cast<float>(std::max(near, far / weight));
       }
       // Angles; nothing ahead on either side (-inf) means open: terrain beyond the raster does
-      // not occlude. Nodata cells keep the plane's NaN.
-      const std::size_t stride = by_rows ? 1 : static_cast<std::size_t>(window.cols);
-      float* out = plane + (by_rows ? static_cast<std::size_t>(major - window.row0) * window.cols +
-                                          static_cast<std::size_t>(lo - window.col0)
-                                    : static_cast<std::size_t>(lo - window.row0) * window.cols +
-                                          static_cast<std::size_t>(major - window.col0));
-      for (int minor = lo; minor < hi; ++minor, out += stride) {
+      // not occlude. Written straight into the field: a separate plane and an interleaving pass
+      // cost a page-faulted buffer per direction and a second strided walk.
+      const std::size_t step_out = stride * (by_rows ? 1 : static_cast<std::size_t>(window.cols));
+      float* out = field + stride * (by_rows ? static_cast<std::size_t>(major - window.row0) * window.cols +
+                                                   static_cast<std::size_t>(lo - window.col0)
+                                             : static_cast<std::size_t>(lo - window.row0) * window.cols +
+                                                   static_cast<std::size_t>(major - window.col0));
+      for (int minor = lo; minor < hi; ++minor, out += step_out) {
         const double v = best[static_cast<std::size_t>(minor)];
         const float angle =
             static_cast<float>(v == -std::numeric_limits<double>::infinity() ? 0.0 : sign * fast_atan(v));
-        if (!std::isnan(zrow[minor])) *out = angle;  // no load: the plane's lines are far apart
+        if (!std::isnan(zrow[minor])) *out = angle;
       }
     }
     // This step's line samples wait near_steps steps before joining the hulls.
@@ -322,7 +337,6 @@ class SweepEngine final : public HorizonEngine {
     const double extent = std::hypot(terrain.width() * std::hypot(j.a, j.c), terrain.height() * std::hypot(j.b, j.d));
     const double c = curvature_coefficient(p_, extent, terrain.frame.earth_radius());
     const int passes = p_.lower ? 2 : 1;
-    const std::size_t cells = static_cast<std::size_t>(window.cols) * window.rows;
     const std::uint64_t per_pass = static_cast<std::uint64_t>(window.cells()) / std::max(1, p_.directions * passes);
     const int W = terrain.width(), H = terrain.height();
     std::vector<float> transposed(static_cast<std::size_t>(W) * H);
@@ -332,11 +346,9 @@ class SweepEngine final : public HorizonEngine {
     tbb::parallel_for(0, p_.directions * passes, [&](int task) {
       const int k = task % p_.directions;
       const bool negate = task >= p_.directions;
-      std::vector<float> plane(cells, std::numeric_limits<float>::quiet_NaN());
+      float* field = (negate ? out.lower.data() : out.upper.data()) + k;
       sweep_direction(terrain, transposed.data(), window, sector_azimuth(k, p_.directions), c, negate, p_.samples,
-                      plane.data());
-      float* dst = negate ? out.lower.data() : out.upper.data();
-      for (std::size_t i = 0; i < cells; ++i) dst[i * p_.directions + k] = plane[i];
+                      field, static_cast<std::size_t>(p_.directions));
       progress.advance(per_pass);
     });
   }
