@@ -13,6 +13,7 @@ namespace {
 
 struct EveryCrossing {
   double radius;
+  static constexpr bool kDenseSteps = true;
   // Row and column crossings in order of distance: the shared mesh is linear inside each
   // triangle with valley creases, so along a ray it peaks on grid lines, and only there.
   template <class Visit>

@@ -58,10 +58,12 @@ ScanSettings scan_settings(const HorizonParams& p, const Terrain& terrain);
 // Block extremes of the heights at one pyramid level: block (bx, by) covers cells
 // [bx B, bx B + B] x [by B, by B + B], borders included.
 struct MaxBlocks {
-  int size = 0, cols = 0;
-  std::vector<float> max, min;  // NaN-free; -inf / +inf for blocks of nodata only
+  int size = 0, shift = 0, cols = 0;  // size = 1 << shift
+  std::vector<float> max, min;        // NaN-free; -inf / +inf for blocks of nodata only
 
-  MaxBlocks(const Terrain& t, int block) : size(block), cols((t.width() + block - 1) / block) {
+  MaxBlocks(const Terrain& t, int log2_block)
+      : size(1 << log2_block), shift(log2_block), cols((t.width() + size - 1) / size) {
+    const int block = size;
     const int rows = (t.height() + block - 1) / block;
     max.assign(static_cast<std::size_t>(cols) * rows, -std::numeric_limits<float>::infinity());
     min.assign(max.size(), std::numeric_limits<float>::infinity());
@@ -84,7 +86,7 @@ struct MaxBlocks {
   }
 };
 
-// Placement must provide
+// Placement must provide kDenseSteps (true when consecutive samples are about a cell apart) and
 //   template <class Visit> void walk(double col_per_m, double row_per_m, double max_distance, double curvature,
 //                                    Visit&& visit) const;
 // calling visit(d, 1/d, curvature*d*d) for increasing distances d <= max_distance (where the ray
@@ -114,9 +116,11 @@ void scan_rays(const Terrain& terrain, const Window& window, HorizonField& out, 
   constexpr double kInf = std::numeric_limits<double>::infinity();
   const double last_col = terrain.width() - 1, last_row = terrain.height() - 1;
   std::vector<MaxBlocks> levels;  // coarse first
-  if (early) {
-    for (int b : {32, 8}) {
-      if (terrain.width() > 2 * b || terrain.height() > 2 * b) levels.emplace_back(terrain, b);
+  // Only a placement that reads every crossing has runs of samples inside one block to skip.
+  if (early && Placement::kDenseSteps) {
+    for (int shift : {5, 3}) {  // 32 and 8 cells
+      const int b = 1 << shift;
+      if (terrain.width() > 2 * b || terrain.height() > 2 * b) levels.emplace_back(terrain, shift);
     }
   }
 
@@ -154,6 +158,8 @@ void scan_rays(const Terrain& terrain, const Window& window, HorizonField& out, 
           // Distance at which the ray leaves the buffer, so samples need no bounds check.
           const double exit_c = pc > 0 ? (last_col - col) / pc : (pc < 0 ? -col / pc : kInf);
           const double exit_r = pr > 0 ? (last_row - row) / pr : (pr < 0 ? -row / pr : kInf);
+          const double inv_pc = pc != 0.0 ? 1.0 / pc : 0.0, inv_pr = pr != 0.0 ? 1.0 / pr : 0.0;
+          std::size_t judged[2] = {SIZE_MAX, SIZE_MAX};  // the block of each level last judged
           placement.walk(pc, pr, std::min(exit_c, exit_r) * (1.0 + 1e-12), c, [&](double d, double inv_d, double drop) {
             const double x = std::clamp(col + pc * d, 0.0, last_col), y = std::clamp(row + pr * d, 0.0, last_row);
             const double z = sampler.at(x, y);
@@ -171,15 +177,20 @@ void scan_rays(const Terrain& terrain, const Window& window, HorizonField& out, 
               }
             }
             // The largest block around this sample whose cells cannot beat max_t anywhere on
-            // the ray's stretch through it (curvature only lowers them further).
-            for (const MaxBlocks& level : levels) {
-              const int bx = std::min(static_cast<int>(x) / level.size, level.cols - 1);
-              const int by = static_cast<int>(y) / level.size;
+            // the ray's stretch through it (curvature only lowers them further). Each block is
+            // judged once, when the ray enters it: checking every sample cost more than it saved.
+            for (std::size_t l = 0; l < levels.size(); ++l) {
+              const MaxBlocks& level = levels[l];
+              const int bx = std::min(static_cast<int>(x) >> level.shift, level.cols - 1);
+              const int by = static_cast<int>(y) >> level.shift;
               const std::size_t b = static_cast<std::size_t>(by) * level.cols + bx;
+              if (b == judged[l]) continue;
+              judged[l] = b;
               const double rise = level.max[b] - z0;
+              if (rise > 0 && !(rise <= max_t * d)) continue;  // cheap test before the exit distance
               const double x0 = bx * level.size, y0 = by * level.size;
-              const double leave_c = pc > 0 ? (x0 + level.size - col) / pc : (pc < 0 ? (x0 - col) / pc : kInf);
-              const double leave_r = pr > 0 ? (y0 + level.size - row) / pr : (pr < 0 ? (y0 - row) / pr : kInf);
+              const double leave_c = pc > 0 ? (x0 + level.size - col) * inv_pc : (pc < 0 ? (x0 - col) * inv_pc : kInf);
+              const double leave_r = pr > 0 ? (y0 + level.size - row) * inv_pr : (pr < 0 ? (y0 - row) * inv_pr : kInf);
               const double leave = std::min(leave_c, leave_r);
               // rise / d' over [d, leave] peaks at d when rise > 0 and at leave otherwise.
               if (!(rise <= max_t * (rise > 0 ? d : leave))) continue;

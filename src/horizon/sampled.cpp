@@ -15,6 +15,7 @@ namespace skyview::detail {
 namespace {
 
 struct FixedDistances {
+  static constexpr bool kDenseSteps = false;
   std::vector<double> distance, inverse;
   template <class Visit>
   void walk(double, double, double max_distance, double curvature, Visit&& visit) const {
