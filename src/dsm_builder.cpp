@@ -68,6 +68,32 @@ void add_box(Extent& e, double x0, double y0, double x1, double y1, OGRCoordinat
   }
 }
 
+// Closes nodata holes up to `max_distance` cells with GDAL's inverse-distance fill; returns how many
+// cells it filled.
+std::int64_t fill_nodata(Grid<float>& g, double max_distance) {
+  GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
+  GDALDatasetUniquePtr ds(mem->Create("", g.width(), g.height(), 1, GDT_Float32, nullptr));
+  std::vector<float> v = g.values();
+  for (float& x : v) x = std::isnan(x) ? -3.4e38f : x;
+  GDALRasterBand* band = ds->GetRasterBand(1);
+  band->SetNoDataValue(-3.4e38);
+  if (band->RasterIO(GF_Write, 0, 0, g.width(), g.height(), v.data(), g.width(), g.height(), GDT_Float32, 0, 0) !=
+          CE_None ||
+      GDALFillNodata(band, nullptr, max_distance, 0, 0, nullptr, nullptr, nullptr) != CE_None ||
+      band->RasterIO(GF_Read, 0, 0, g.width(), g.height(), v.data(), g.width(), g.height(), GDT_Float32, 0, 0) !=
+          CE_None) {
+    throw Error("filling nodata failed");
+  }
+  std::int64_t filled = 0;
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    if (std::isnan(g.values()[k]) && v[k] > -1e38f) {
+      g.values()[k] = v[k];
+      ++filled;
+    }
+  }
+  return filled;
+}
+
 GDALDatasetUniquePtr open_raster(const std::string& path) {
   init_gdal();
   GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
@@ -81,6 +107,9 @@ DsmResult build_dsm(const DsmOptions& o) {
   init_gdal();
   if (o.dems.empty() && o.points.empty() && o.footprints.empty()) {
     throw Error("nothing to build from: give --dem, --points or --footprints");
+  }
+  if (o.want_dtm && o.dems.empty() && o.points.empty()) {
+    throw Error("--dtm needs a terrain: give --dem, or --points with ground returns");
   }
   const GridStatistic stat = parse_grid_statistic(o.stat);
   // Inputs and their CRSs.
@@ -259,6 +288,13 @@ DsmResult build_dsm(const DsmOptions& o) {
     fp_returns.resize(fp_height.size());
   }
 
+  // Without a DEM, the terrain that relative footprint heights stand on and that --dtm writes is
+  // the clouds' bare earth: the mean of their ground returns, holes (under buildings) filled.
+  const bool cloud_terrain =
+      o.dems.empty() && !clouds.empty() && (o.want_dtm || (layer && o.base_field.empty() && !o.absolute_heights));
+  PointGridder ground_gridder(cloud_terrain ? GridLattice{width, height, x0, y1, res} : GridLattice{1, 1, 0, 1, 1},
+                              GridStatistic::mean);
+
   // Points: streamed (or held in memory for the PCL filters), reprojected, filtered, gridded.
   PointGridder gridder({width, height, x0, y1, res}, stat, o.idw_radius, o.idw_power);
   auto keep_class = [&](int cls, bool ground) {
@@ -275,6 +311,7 @@ DsmResult build_dsm(const DsmOptions& o) {
         fp_returns[static_cast<std::size_t>(id) - 1].push_back(static_cast<float>(z));
       }
     }
+    if (cloud_terrain && ground) ground_gridder.add(x, y, static_cast<float>(z));
     if (!keep_class(cls, ground)) return;
     ++out.report.points_used;
     gridder.add(x, y, static_cast<float>(z));
@@ -294,11 +331,13 @@ DsmResult build_dsm(const DsmOptions& o) {
       });
     };
     // Bare earth comes from class 2 when the cloud has it, else from the morphological filter.
+    const bool need_ground = o.ground_only || cloud_terrain;
     bool has_ground_class = false;
-    if (o.ground_only)
+    if (need_ground) {
       each_point([&](double, double, const LasPoint& p) { has_ground_class |= p.classification == 2; });
-    const bool filter_ground = o.ground_only && !has_ground_class;
-    if (o.ground_only) out.report.ground_source = filter_ground ? "morphological filter" : "class 2";
+    }
+    const bool filter_ground = need_ground && !has_ground_class;
+    if (need_ground) out.report.ground_source = filter_ground ? "morphological filter" : "class 2";
     if (!o.denoise && !filter_ground) {
       each_point([&](double x, double y, const LasPoint& p) {
         ++out.report.points_read;
@@ -339,6 +378,13 @@ DsmResult build_dsm(const DsmOptions& o) {
     for (std::size_t i = 0; i < pts.size(); ++i) accept(pts[i].x, pts[i].y, pts[i].z, cls[i], ground[i]);
   }
   Grid<float> pts = gridder.finish(&out.report.cells_from_points);
+  if (cloud_terrain) {
+    terrain = ground_gridder.finish();
+    if (std::all_of(terrain.values().begin(), terrain.values().end(), [](float v) { return std::isnan(v); })) {
+      throw Error("the clouds hold no ground returns to make the terrain from; give --dem");
+    }
+    fill_nodata(terrain, std::max(width, height));
+  }
   if (!clouds.empty() && out.report.points_used == 0) {
     throw Error("none of the " + std::to_string(out.report.points_read) +
                 " returns falls on the output grid after the class filters (check the clouds' CRS or --s_srs, "
@@ -389,26 +435,8 @@ DsmResult build_dsm(const DsmOptions& o) {
     }
     ++out.report.footprints_from_cloud;
   }
-  if (o.fill) {
-    GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
-    GDALDatasetUniquePtr ds(mem->Create("", width, height, 1, GDT_Float32, nullptr));
-    std::vector<float> v = out.dsm.values();
-    for (float& x : v) x = std::isnan(x) ? -3.4e38f : x;
-    GDALRasterBand* band = ds->GetRasterBand(1);
-    band->SetNoDataValue(-3.4e38);
-    if (band->RasterIO(GF_Write, 0, 0, width, height, v.data(), width, height, GDT_Float32, 0, 0) != CE_None ||
-        GDALFillNodata(band, nullptr, o.fill_distance, 0, 0, nullptr, nullptr, nullptr) != CE_None ||
-        band->RasterIO(GF_Read, 0, 0, width, height, v.data(), width, height, GDT_Float32, 0, 0) != CE_None) {
-      throw Error("filling nodata failed");
-    }
-    for (std::size_t k = 0; k < v.size(); ++k) {
-      if (std::isnan(out.dsm.values()[k]) && v[k] > -1e38f) {
-        out.dsm.values()[k] = v[k];
-        ++out.report.cells_filled;
-      }
-    }
-  }
-  if (!o.dems.empty()) out.dtm = std::move(terrain);
+  if (o.fill) out.report.cells_filled = fill_nodata(out.dsm, o.fill_distance);
+  if (!o.dems.empty() || cloud_terrain) out.dtm = std::move(terrain);
   return out;
 }
 

@@ -59,7 +59,7 @@ Runner setup(CLI::App& app) {
   app.add_flag("--fill", o->dsm.fill, "Close nodata holes (GDAL fill-nodata)");
   app.add_option("--fill-distance", o->dsm.fill_distance, "Largest hole to close, in cells")->capture_default_str();
   app.add_option("--z-scale", o->dsm.z_scale, "Vertical unit factor of the DEMs to metres")->capture_default_str();
-  app.add_option("--dtm", o->dtm, "Also write the terrain (the warped DEMs) here");
+  app.add_option("--dtm", o->dtm, "Also write the terrain here: the warped DEMs, else the clouds' bare earth");
   add_output_options(app, o->out);
   app.footer(
       "DSM = max(terrain, buildings, gridded returns) cell by cell. A footprint covers the cells whose centre "
@@ -67,6 +67,7 @@ Runner setup(CLI::App& app) {
   return [o] {
     check_output_writable(o->output, o->out.overwrite);
     if (!o->dtm.empty()) check_output_writable(o->dtm, o->out.overwrite);
+    o->dsm.want_dtm = !o->dtm.empty();
     if (!o->te.empty()) o->dsm.te = std::array<double, 4>{o->te[0], o->te[1], o->te[2], o->te[3]};
     std::stringstream in(o->classes);
     for (std::string item; std::getline(in, item, ',');) {

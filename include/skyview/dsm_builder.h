@@ -37,6 +37,7 @@ struct DsmOptions {
   bool fill = false;            // close nodata holes (GDALFillNodata)
   double fill_distance = 20.0;  // cells
   double z_scale = 1.0;         // applied to DEM heights
+  bool want_dtm = false;        // also the terrain: the DEMs, else the clouds' bare earth
 };
 
 struct DsmReport {
@@ -48,7 +49,8 @@ struct DsmReport {
 
 struct DsmResult {
   GeoReference georef;
-  Grid<float> dsm, dtm;  // NaN = nodata; dtm empty when no terrain was given
+  Grid<float> dsm, dtm;  // NaN = nodata; dtm: the warped DEMs, else (with want_dtm or relative
+                         // footprint heights) the clouds' ground returns, filled; else empty
   DsmReport report;
 };
 

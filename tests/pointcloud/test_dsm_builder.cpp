@@ -218,4 +218,23 @@ TEST(DsmBuilder, SyntheticDistrictFromLidarAndFootprints) {
   const DistrictBuilding& ne = d.buildings[8];
   ASSERT_FALSE(ne.height_known);
   EXPECT_NEAR(cell_at(ne.outer[0][0] + 10.5, ne.outer[0][1] + 10.5), ne.base + ne.height, 0.011);
+
+  // Without a DEM or a base field, heights stand on the cloud's bare earth (its ground returns,
+  // filled under the buildings), which --dtm writes.
+  o.base_field.clear();
+  o.want_dtm = true;
+  const DsmResult rel = build_dsm(o);
+  ASSERT_EQ(rel.dtm.size(), rel.dsm.size());
+  EXPECT_EQ(rel.report.ground_source, "class 2");
+  for (float v : rel.dtm.values()) ASSERT_FALSE(std::isnan(v));
+  const double x = sw.outer[0][0] + 10.5, y = sw.outer[0][1] + 10.5;  // inside the south-west block
+  const int c = static_cast<int>(x - 500000), row = static_cast<int>(6400096 - y);
+  EXPECT_NEAR(rel.dtm(c, row), d.ground(x, y), 0.15);  // interpolated under the roof
+  EXPECT_NEAR(rel.dsm(c, row), d.ground(x, y) + sw.height, 0.15);
+  EXPECT_NEAR(rel.dtm(static_cast<int>(cx - 500000), static_cast<int>(6400096 - cy)), d.ground(cx, cy), 0.02);
+  DsmOptions footprints_only;
+  footprints_only.footprints = dir + "/d.geojson";
+  footprints_only.height_field = "height";
+  footprints_only.want_dtm = true;
+  EXPECT_THROW(build_dsm(footprints_only), Error);
 }
