@@ -43,7 +43,7 @@ Runner setup(CLI::App& app) {
   app.add_option("--z-scale", o->z_scale, "Vertical unit factor to metres")->capture_default_str();
   app.add_flag("--overwrite", o->overwrite, "Replace existing result files");
   app.add_flag("-q,--quiet", o->quiet, "No per-configuration lines on stderr");
-  app.add_option("--threads", o->threads, "Worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  app.add_option("--threads", o->threads, "Worker threads (0 = all cores)")->check(non_negative_number());
   app.footer(
       "Times each method over a grid of its parameters and compares svf and sky visibility with the ray-cast "
       "reference (RMSE, bias, 99th percentile, maximum, share of cells off by more than 0.01).");

@@ -28,33 +28,33 @@ Runner setup(CLI::App& app) {
   app.add_option("--base-field", o->dsm.base_field, "Footprint base height attribute (absolute)");
   app.add_flag("--absolute-heights", o->dsm.absolute_heights, "The height field is absolute, not above the terrain");
   app.add_option("--res", o->dsm.res, "Cell size in output CRS units (default: the DEM's, else 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   app.add_option("--t_srs", o->dsm.t_srs, "Output CRS (default: the first input's)");
   app.add_option("--te", o->te, "Output extent xmin ymin xmax ymax")->expected(4);
   app.add_option("--stat", o->dsm.stat, "Per-cell statistic of the returns: max, mean, min, idw")
       ->check(CLI::IsMember({"max", "mean", "min", "idw"}))
       ->capture_default_str();
   app.add_option("--idw-radius", o->dsm.idw_radius, "IDW: returns within this many cells of a cell centre")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   app.add_option("--idw-power", o->dsm.idw_power, "IDW: weight 1/distance^power")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   app.add_option("--classes", o->classes, "Comma-separated LAS classes to keep (e.g. 2,6)");
   app.add_flag("--ground-only", o->dsm.ground_only,
                "Keep ground returns: class 2, or PCL's progressive morphological filter for unclassified clouds");
   app.add_option("--ground-window", o->dsm.ground_window, "Morphological filter: largest window (m), > widest building")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   app.add_option("--ground-slope", o->dsm.ground_slope, "Morphological filter: terrain slope (rise over run)")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   app.add_flag("--denoise", o->dsm.denoise, "Remove isolated returns (birds, multipath) with PCL's statistical filter");
   app.add_option("--denoise-k", o->dsm.denoise_k, "Denoise: neighbours per return")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   app.add_option("--denoise-sigma", o->dsm.denoise_sigma, "Denoise: standard deviations beyond the mean distance")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   app.add_flag("--fill", o->dsm.fill, "Close nodata holes (GDAL fill-nodata)");
   app.add_option("--fill-distance", o->dsm.fill_distance, "Largest hole to close, in cells")->capture_default_str();

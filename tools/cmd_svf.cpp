@@ -34,27 +34,32 @@ Runner setup(CLI::App& app) {
     wo.overwrite = o->out.overwrite;
     wo.metadata = job.metadata;
     const int w = job.terrain.width(), h = job.terrain.height();
-    std::vector<OutputBand> bands{{"svf", "1", p.svf.data(), {{"DEFINITION", "1 - mean sin^2(max(h,0)); cosine-weighted, horizontal"}}},
-                 {"svf_surface",
-                  "1",
-                  p.svf_surface.data(),
-                  {{"DEFINITION", "view factor of the tilted cell surface (Horn normal) to the unobstructed sky"}}},
-                 {"sky_visibility",
-                  "1",
-                  p.sky_visibility.data(),
-                  {{"DEFINITION", "1 - mean sin(max(h,0)); solid-angle fraction of the hemisphere"}}},
-                 {"openness_positive",
-                  "degree",
-                  p.openness_positive.data(),
-                  {{"DEFINITION", "mean zenith angle of the horizon (Yokoyama 2002)"}}},
-                 {"openness_negative",
-                  "degree",
-                  p.openness_negative.data(),
-                  {{"DEFINITION", "mean nadir angle of the lowest terrain (Yokoyama 2002)"}}}};
+    std::vector<OutputBand> bands{
+        {"svf", "1", p.svf.data(), {{"DEFINITION", "1 - mean sin^2(max(h,0)); cosine-weighted, horizontal"}}},
+        {"svf_surface",
+         "1",
+         p.svf_surface.data(),
+         {{"DEFINITION", "view factor of the tilted cell surface (Horn normal) to the unobstructed sky"}}},
+        {"sky_visibility",
+         "1",
+         p.sky_visibility.data(),
+         {{"DEFINITION", "1 - mean sin(max(h,0)); solid-angle fraction of the hemisphere"}}},
+        {"openness_positive",
+         "degree",
+         p.openness_positive.data(),
+         {{"DEFINITION", "mean zenith angle of the horizon (Yokoyama 2002)"}}},
+        {"openness_negative",
+         "degree",
+         p.openness_negative.data(),
+         {{"DEFINITION", "mean nadir angle of the lowest terrain (Yokoyama 2002)"}}}};
     if (!job.field.svf_direct.empty()) {
-      bands.push_back({"svf_montecarlo", "1", job.field.svf_direct.data(),
+      bands.push_back({"svf_montecarlo",
+                       "1",
+                       job.field.svf_direct.data(),
                        {{"DEFINITION", "fraction of stratified cosine-weighted rays that reach the sky"}}});
-      bands.push_back({"svf_montecarlo_stderr", "1", job.field.svf_stderr.data(),
+      bands.push_back({"svf_montecarlo_stderr",
+                       "1",
+                       job.field.svf_stderr.data(),
                        {{"DEFINITION", "binomial standard error of svf_montecarlo (an upper bound)"}}});
     }
     write_bands(o->output, w, h, job.terrain.georef, bands, wo);

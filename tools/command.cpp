@@ -1,5 +1,7 @@
 #include "command.h"
 
+#include <cmath>
+
 #include <tbb/global_control.h>
 
 namespace skyview::cli {
@@ -49,5 +51,25 @@ ThreadLimit::ThreadLimit(int threads) {
 }
 
 ThreadLimit::~ThreadLimit() = default;
+
+const CLI::Validator& positive_number() {
+  static const CLI::Validator v(
+      [](std::string& text) -> std::string {
+        double x = 0;
+        return CLI::detail::lexical_cast(text, x) && x > 0 && std::isfinite(x) ? "" : "must be a positive number";
+      },
+      "POSITIVE");
+  return v;
+}
+
+const CLI::Validator& non_negative_number() {
+  static const CLI::Validator v(
+      [](std::string& text) -> std::string {
+        double x = 0;
+        return CLI::detail::lexical_cast(text, x) && x >= 0 && std::isfinite(x) ? "" : "must be zero or positive";
+      },
+      "NONNEGATIVE");
+  return v;
+}
 
 }  // namespace skyview::cli

@@ -38,6 +38,11 @@ struct OutputOptions {
 };
 void add_output_options(CLI::App& app, OutputOptions& o);
 
+// "must be a positive number" for options that need one (CLI11's own check prints its numeric
+// range up to 1.8e308).
+const CLI::Validator& positive_number();
+const CLI::Validator& non_negative_number();
+
 // Limits oneTBB to `threads` workers while alive (0 = no limit).
 class ThreadLimit {
  public:

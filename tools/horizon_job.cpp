@@ -23,9 +23,10 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
   app.add_option("--samples", o.params.samples,
                  "Per direction: samples (sampled, default 16) or exact near crossings (sweep, default 64)")
       ->capture_default_str();
-  app.add_option("--radius", o.params.radius,
-                 "Search radius in metres for march and sampled (default 500); sweep is unlimited")
-      ->check(CLI::PositiveNumber);
+  app.add_option(
+         "--radius", o.params.radius,
+         "Search radius in metres (march and sampled: default 500; sweep: unlimited, or every crossing within it)")
+      ->check(positive_number());
   app.add_option("--rays", o.params.rays, "Monte-Carlo rays per cell for raycast's direct svf (0 = none)")
       ->capture_default_str();
   app.add_option("--seed", o.params.seed, "Seed of the per-cell rotation (sampled)")->capture_default_str();

@@ -44,7 +44,14 @@ int main(int argc, char** argv) {
   try {
     app.parse(args);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);  // --help, --version
+    // Usage errors, like every other error, are one line naming the subcommand.
+    std::string name = "skyview";
+    for (const auto& [sub, run] : runners) {
+      if (sub->parsed()) name += " " + sub->get_name();
+    }
+    std::fprintf(stderr, "%s: error: %s (see --help)\n", name.c_str(), e.what());
+    return 2;
   }
   init_gdal();
   for (auto& [sub, run] : runners) {

@@ -128,7 +128,8 @@ struct LineSample {
 __attribute__((target_clones("avx2", "default")))
 #endif
 void sweep_direction(const Terrain& terrain, const float* transposed, const Window& window, double azimuth,
-                     double curvature, bool negate, int near_steps, float* field, std::size_t stride) {
+                     double curvature, bool negate, int near_steps, double radius, float* field,
+                     std::size_t stride) {
   const int W = terrain.width(), H = terrain.height();
   const Jacobian j = terrain.frame.at(terrain.origin_col + 0.5 * W, terrain.origin_row + 0.5 * H);
   double pc, pr;
@@ -149,6 +150,10 @@ void sweep_direction(const Terrain& terrain, const float* transposed, const Wind
   const long max_drift = static_cast<long>(std::ceil(std::abs(k) * (major_n - 1))) + 1;
   const long m_min = -max_drift, lines = minor_n + 2 * max_drift + 2;
   // Hull points are at least this far ahead of any cell that queries them.
+  // With a search radius the sweep is a vectorised exhaustive march: every crossing within the
+  // radius is read along the cell's own ray and no hull is kept.
+  const bool limited = std::isfinite(radius);
+  if (limited) near_steps = static_cast<int>(std::min<double>(major_n, std::floor(radius / t_step) + 1));
   const double far_gap = near_steps * t_step - std::abs(t_minor);
   std::vector<LineHull> hulls(static_cast<std::size_t>(lines));
   std::vector<std::vector<LineSample>> pending(near_steps + 1);  // samples not yet in a hull, by step
@@ -196,28 +201,32 @@ void sweep_direction(const Terrain& terrain, const float* transposed, const Wind
         const int b = std::min(hi, static_cast<int>(std::floor(minor_n - 1 - off)) + 1);
         const float* zs = z + mj * major_stride + i_off;
         const double d = s * t_step;
-        const float inv_d = static_cast<float>(1.0 / d), drop = static_cast<float>(c * d), ff = static_cast<float>(f);
         float* bst = best.data();
-        if (f > 0.0) {
-          const int b1 = std::min(b, minor_n - 1 - i_off);  // the right neighbour exists
-          for (int m = a; m < b1; ++m) {
-            const float zi = zs[m] + ff * (zs[m + 1] - zs[m]);
-            const float v = sgn * (zi - zrow[m]) * inv_d - drop;
-            bst[m] = v > bst[m] ? v : bst[m];
-          }
-          for (int m = std::max(a, b1); m < b; ++m) {
-            const float v = sgn * (zs[m] - zrow[m]) * inv_d - drop;
-            bst[m] = v > bst[m] ? v : bst[m];
-          }
-        } else {
-          for (int m = a; m < b; ++m) {
-            const float v = sgn * (zs[m] - zrow[m]) * inv_d - drop;
-            bst[m] = v > bst[m] ? v : bst[m];
+        // Beyond the radius the row crossing is skipped; the column crossing before it may count.
+        if (!limited || d <= radius) {
+          const float inv_d = static_cast<float>(1.0 / d), drop = static_cast<float>(c * d), ff = static_cast<float>(f);
+          if (f > 0.0) {
+            const int b1 = std::min(b, minor_n - 1 - i_off);  // the right neighbour exists
+            for (int m = a; m < b1; ++m) {
+              const float zi = zs[m] + ff * (zs[m + 1] - zs[m]);
+              const float v = sgn * (zi - zrow[m]) * inv_d - drop;
+              bst[m] = v > bst[m] ? v : bst[m];
+            }
+            for (int m = std::max(a, b1); m < b; ++m) {
+              const float v = sgn * (zs[m] - zrow[m]) * inv_d - drop;
+              bst[m] = v > bst[m] ? v : bst[m];
+            }
+          } else {
+            for (int m = a; m < b; ++m) {
+              const float v = sgn * (zs[m] - zrow[m]) * inv_d - drop;
+              bst[m] = v > bst[m] ? v : bst[m];
+            }
           }
         }
         // The minor grid line crossed between crossings s - 1 and s, read along it.
         double q;
-        if (crossing_between((s - 1) * k_step, off, q)) {
+        if (crossing_between((s - 1) * k_step, off, q) &&
+            (!limited || (s - 1 + (q - (s - 1) * k_step) / k_step) * t_step <= radius)) {
           const double lambda = (q - (s - 1) * k_step) / k_step;
           const int qi = static_cast<int>(q);
           const int qa = std::max(lo, -qi), qb = std::min(hi, minor_n - qi);
@@ -234,7 +243,7 @@ void sweep_direction(const Terrain& terrain, const float* transposed, const Wind
         }
       }
       // Far field: tangents to the two neighbouring lines' hulls.
-      for (int minor = lo; minor < hi; ++minor) {
+      for (int minor = limited ? hi : lo; minor < hi; ++minor) {
         const float zc = zrow[minor];
         if (std::isnan(zc)) continue;
         const double t = major * t_major + minor * t_minor;
@@ -276,6 +285,7 @@ void sweep_direction(const Terrain& terrain, const float* transposed, const Wind
         if (!std::isnan(zrow[minor])) *out = angle;
       }
     }
+    if (limited) continue;  // no hulls within a radius
     // This step's line samples wait near_steps steps before joining the hulls.
     auto& mine = pending[(step + near_steps + 1) % (near_steps + 1)];
     // First each line's crossing of a minor grid line since the previous (farther) step: every
@@ -314,28 +324,28 @@ class SweepEngine final : public HorizonEngine {
     if (p_.samples == 0) p_.samples = 64;
     if (p_.samples < 1 || p_.samples > 4096)
       throw Error("--samples (exact near crossings) must be 1 to 4096 for sweep");
-    if (p_.radius != 0.0) {
-      throw Error(
-          "--radius is not supported by --method sweep (the default), which is exact over the whole raster; use "
-          "--method march or sampled for a limited radius");
-    }
+    if (p_.radius < 0.0 || !std::isfinite(p_.radius)) throw Error("--radius must be positive (or 0 for unlimited)");
   }
   std::string_view name() const override { return "sweep"; }
   std::string_view citation() const override {
-    return "upper convex hull sweep along digital lines (after Stewart 1998, IEEE TVCG 4(1)); exact, unlimited radius";
+    return "upper convex hull sweep along digital lines (after Stewart 1998, IEEE TVCG 4(1)); unlimited radius, or "
+           "every crossing within --radius";
   }
   std::map<std::string, std::string> describe() const override {
-    return {{"METHOD", "sweep"},         {"DIRECTIONS", std::to_string(p_.directions)},
-            {"RADIUS_M", "unlimited"},   {"NEAR_CROSSINGS", std::to_string(p_.samples)},
-            {"CURVATURE", p_.curvature}, {"REFRACTION", std::to_string(p_.refraction)}};
+    return {{"METHOD", "sweep"},
+            {"DIRECTIONS", std::to_string(p_.directions)},
+            {"RADIUS_M", p_.radius > 0 ? std::to_string(p_.radius) : "unlimited"},
+            {"NEAR_CROSSINGS", p_.radius > 0 ? "all within the radius" : std::to_string(p_.samples)},
+            {"CURVATURE", p_.curvature},
+            {"REFRACTION", std::to_string(p_.refraction)}};
   }
-  double radius() const override { return std::numeric_limits<double>::infinity(); }
+  double radius() const override { return p_.radius > 0 ? p_.radius : std::numeric_limits<double>::infinity(); }
   void compute(const Terrain& terrain, const Window& window, HorizonField& out,
                ProgressCounter& progress) const override {
     out.resize(window.cols, window.rows, p_.directions, p_.lower);
     const Jacobian j = terrain.frame.at(terrain.origin_col, terrain.origin_row);
     const double extent = std::hypot(terrain.width() * std::hypot(j.a, j.c), terrain.height() * std::hypot(j.b, j.d));
-    const double c = curvature_coefficient(p_, extent, terrain.frame.earth_radius());
+    const double c = curvature_coefficient(p_, p_.radius > 0 ? p_.radius : extent, terrain.frame.earth_radius());
     const int passes = p_.lower ? 2 : 1;
     const std::uint64_t per_pass = static_cast<std::uint64_t>(window.cells()) / std::max(1, p_.directions * passes);
     const int W = terrain.width(), H = terrain.height();
@@ -348,7 +358,7 @@ class SweepEngine final : public HorizonEngine {
       const bool negate = task >= p_.directions;
       float* field = (negate ? out.lower.data() : out.upper.data()) + k;
       sweep_direction(terrain, transposed.data(), window, sector_azimuth(k, p_.directions), c, negate, p_.samples,
-                      field, static_cast<std::size_t>(p_.directions));
+                      radius(), field, static_cast<std::size_t>(p_.directions));
       progress.advance(per_pass);
     });
   }

@@ -26,8 +26,9 @@ RunResult run_skyview(const std::string& args, const std::string& dir) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), all};
 }
 
-void expect_one_line_error(const RunResult& r, const std::string& fragment) {
-  EXPECT_EQ(r.exit_code, 1) << r.err;
+// Exit 1 for bad data or files, 2 for a bad command line.
+void expect_one_line_error(const RunResult& r, const std::string& fragment, int exit_code = 1) {
+  EXPECT_EQ(r.exit_code, exit_code) << r.err;
   EXPECT_NE(r.err.find("error: "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find(fragment), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
@@ -105,9 +106,9 @@ TEST_F(CliErrors, ExistingOutputIsKeptWithoutOverwrite) {
   EXPECT_EQ(files, 0);
 }
 
-TEST_F(CliErrors, RadiusWithTheDefaultSweepSaysWhichMethodsTakeOne) {
-  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --radius 100", dir),
-                        "--method march or sampled");
+TEST_F(CliErrors, NegativeRadiusWithTheDefaultSweep) {
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --radius -100", dir),
+                        "--radius: must be a positive number", 2);
 }
 
 TEST_F(CliErrors, UnknownMethodBandAndFormat) {

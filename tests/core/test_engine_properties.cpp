@@ -186,10 +186,48 @@ TEST(SweepMethod, CurvatureLowersDistantHorizonsByTheExpectedDrop) {
   EXPECT_THROW(make_horizon_engine("sweep",
                                    [] {
                                      HorizonParams q;
-                                     q.radius = 5;
+                                     q.radius = -5;
                                      return q;
                                    }()),
                Error);
 }
 
 }  // namespace
+
+// With a radius the sweep reads every row and column crossing within it, as the march does: the
+// same horizons up to float rounding, on a city with nodata holes, off-axis directions included.
+TEST(SweepWithRadius, MatchesTheMarchWithinTheRadius) {
+  Terrain t = small_city();
+  for (int r = 60; r < 70; ++r) t.heights(40, r) = std::numeric_limits<float>::quiet_NaN();
+  HorizonParams p;
+  p.directions = 24;
+  p.radius = 30.5;
+  p.curvature = "off";
+  p.lower = true;
+  const HorizonField sweep = run(t, Window::whole(t), "sweep", p);
+  const HorizonField march = run(t, Window::whole(t), "march", p);
+  ASSERT_EQ(sweep.upper.size(), march.upper.size());
+  double worst = 0.0;
+  std::size_t occluded = 0;
+  for (std::size_t i = 0; i < sweep.upper.size(); ++i) {
+    if (std::isnan(march.upper[i])) {
+      ASSERT_TRUE(std::isnan(sweep.upper[i])) << i;
+      continue;
+    }
+    worst = std::max(
+        {worst, std::abs(double(sweep.upper[i]) - march.upper[i]), std::abs(double(sweep.lower[i]) - march.lower[i])});
+    occluded += march.upper[i] > 0.1f;
+  }
+  EXPECT_LT(worst, 1e-5) << "radians";
+  EXPECT_GT(occluded, sweep.upper.size() / 10);
+  // And the radius does limit it: a 5 m radius sees less than the unlimited sweep.
+  p.radius = 5.0;
+  const HorizonField near = run(t, Window::whole(t), "sweep", p);
+  p.radius = 0.0;
+  const HorizonField all = run(t, Window::whole(t), "sweep", p);
+  double sum_near = 0, sum_all = 0;
+  for (std::size_t i = 0; i < near.upper.size(); ++i) {
+    if (!std::isnan(near.upper[i])) sum_near += near.upper[i], sum_all += all.upper[i];
+  }
+  EXPECT_LT(sum_near, 0.9 * sum_all);
+}

@@ -60,8 +60,8 @@ TEST(RealSamples, BundledCitySweepAndMarchAgainstTheRayCastReference) {
   const SkyViewProducts ref = products_of(t, "raycast", n);
   const ErrorStats sweep = compare_to_reference(products_of(t, "sweep", n).svf, ref.svf);
   const ErrorStats march = compare_to_reference(products_of(t, "march", n).svf, ref.svf);
-  std::printf("city.tif, %d directions: sweep p99 %.4f rmse %.4f; march p99 %.4f rmse %.4f\n", n, sweep.p99,
-              sweep.rmse, march.p99, march.rmse);
+  std::printf("city.tif, %d directions: sweep p99 %.4f rmse %.4f; march p99 %.4f rmse %.4f\n", n, sweep.p99, sweep.rmse,
+              march.p99, march.rmse);
   EXPECT_LT(sweep.p99, 0.005);
   EXPECT_LT(march.p99, 0.01);
 }
