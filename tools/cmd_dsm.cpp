@@ -63,7 +63,8 @@ Runner setup(CLI::App& app) {
   add_output_options(app, o->out);
   app.footer(
       "DSM = max(terrain, buildings, gridded returns) cell by cell. A footprint covers the cells whose centre "
-      "lies inside it; a footprint without height takes the 90th percentile of the returns inside it.");
+      "lies inside it; a footprint without height takes the 90th percentile of the returns inside it. Without a "
+      "DEM, the terrain is the clouds' ground returns (class 2, else the morphological filter), holes filled.");
   return [o] {
     check_output_writable(o->output, o->out.overwrite);
     if (!o->dtm.empty()) check_output_writable(o->dtm, o->out.overwrite);
@@ -119,7 +120,8 @@ Runner setup(CLI::App& app) {
   };
 }
 
-const Registration reg("dsm", "Height raster from DEMs, LAS point clouds and building footprints", setup);
+const Registration reg("dsm", "Height raster from DEMs, point clouds (LAS, PLY, PCD, XYZ) and building footprints",
+                       setup);
 
 }  // namespace
 }  // namespace skyview::cli
