@@ -5,7 +5,7 @@ packages=(
   cmake g++ make pkg-config
   libgdal-dev gdal-bin libgeographiclib-dev libopencv-dev libpcl-dev libembree-dev libtbb-dev libgeos-dev
   libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev
-  clang clang-format
+  clang clang-format libclang-rt-14-dev  # libFuzzer and sanitizer runtimes (only recommended by clang)
   tzdata  # IANA zone rules read by skyview sun --tz (src/solar/time_zone.cpp)
 )
 missing=()
