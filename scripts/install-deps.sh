@@ -6,6 +6,7 @@ packages=(
   libgdal-dev gdal-bin libgeographiclib-dev libopencv-dev libpcl-dev libembree-dev libtbb-dev libgeos-dev
   libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev
   clang clang-format libclang-rt-14-dev  # libFuzzer and sanitizer runtimes (only recommended by clang)
+  python3  # scripts/fuzz.sh writes its seed LAS files with it
   tzdata  # IANA zone rules read by skyview sun --tz (src/solar/time_zone.cpp)
 )
 missing=()
