@@ -72,7 +72,8 @@ TEST(PointClouds, TextPlyAndPcdGiveTheSameCellsAsLas) {
     }
   }
   EXPECT_EQ(open_point_cloud(dir + "/p.csv")->point_count(), 4u);
-  const double* b = open_point_cloud(dir + "/p.ply")->bounds();
+  const auto ply = open_point_cloud(dir + "/p.ply");
+  const double* b = ply->bounds();
   EXPECT_DOUBLE_EQ(b[0], 500000.5);
   EXPECT_DOUBLE_EQ(b[3], 6400009.5);
 }
