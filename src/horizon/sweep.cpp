@@ -48,6 +48,7 @@ struct LineHull {
   std::vector<HullPoint> points;
   double top = -std::numeric_limits<double>::infinity();
   HullPoint last{0, 0}, before_last{0, 0};
+  mutable std::size_t hint = 0;  // the last tangent point found: pops only remove nearer points
 
   void push(const HullPoint& p) {
     while (points.size() >= 2) {
@@ -69,23 +70,41 @@ struct LineHull {
   // near end is the part of the hull just written, still in cache.
   double tangent_slope(const HullPoint& p) const {
     const std::size_t n = points.size();
-    if (n == 1 || rises(before_last, last, p)) return (last.z - p.z) / (last.t - p.t);
-    const HullPoint* h = points.data();
-    // The nearest point lies past the tangent (checked above); indices >= above do.
-    std::size_t j = n - 2, above = n - 1;
-    for (std::size_t step = 2; j > 0 && !rises(h[j - 1], h[j], p); step *= 2) {
-      above = j;
-      j = j > step ? j - step : 0;
+    if (n == 1 || rises(before_last, last, p)) {
+      hint = n - 1;
+      return (last.z - p.z) / (last.t - p.t);
     }
-    std::size_t lo = j, hi = above - 1;
-    while (lo < hi) {
-      const std::size_t mid = (lo + hi + 1) / 2;
-      if (rises(h[mid - 1], h[mid], p)) {
-        lo = mid;
-      } else {
-        hi = mid - 1;
+    // The nearest point lies past the tangent. Start from the previous answer on this line (the
+    // same distant peak, mostly) and gallop away from it to bracket the tangent, then bisect.
+    const HullPoint* h = points.data();
+    auto rises_into = [&](std::size_t i) { return i == 0 || rises(h[i - 1], h[i], p); };
+    std::size_t lo, hi;  // rises_into(lo) holds, rises_into(hi) does not
+    const std::size_t start = std::min(hint, n - 2);
+    if (rises_into(start)) {
+      lo = start, hi = n - 1;
+      for (std::size_t step = 1; lo + step < hi; step *= 2) {
+        if (!rises_into(lo + step)) {
+          hi = lo + step;
+          break;
+        }
+        lo += step;
+      }
+    } else {
+      hi = start, lo = 0;
+      for (std::size_t step = 1; step < hi; step *= 2) {
+        if (rises_into(hi - step)) {
+          lo = hi - step;
+          break;
+        }
+        hi -= step;
+        if (step >= hi) break;
       }
     }
+    while (hi - lo > 1) {
+      const std::size_t mid = lo + (hi - lo) / 2;
+      (rises_into(mid) ? lo : hi) = mid;
+    }
+    hint = lo;
     return (h[lo].z - p.z) / (h[lo].t - p.t);
   }
 };
