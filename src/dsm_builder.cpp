@@ -333,11 +333,17 @@ DsmResult build_dsm(const DsmOptions& o) {
     // Bare earth comes from class 2 when the cloud has it, else from the morphological filter.
     const bool need_ground = o.ground_only || cloud_terrain;
     bool has_ground_class = false;
-    if (need_ground) {
-      each_point([&](double, double, const LasPoint& p) { has_ground_class |= p.classification == 2; });
+    if (need_ground) {  // classes only: no reprojection needed
+      cloud->read_points([&](const std::vector<LasPoint>& chunk) {
+        for (const LasPoint& p : chunk) has_ground_class |= p.classification == 2;
+      });
     }
     const bool filter_ground = need_ground && !has_ground_class;
-    if (need_ground) out.report.ground_source = filter_ground ? "morphological filter" : "class 2";
+    if (need_ground) {
+      const std::string source = filter_ground ? "morphological filter" : "class 2";
+      std::string& r = out.report.ground_source;
+      r = r.empty() || r == source ? source : "class 2 and morphological filter";
+    }
     if (!o.denoise && !filter_ground) {
       each_point([&](double x, double y, const LasPoint& p) {
         ++out.report.points_read;
@@ -391,10 +397,13 @@ DsmResult build_dsm(const DsmOptions& o) {
                 "--te, --classes)");
   }
 
-  // Buildings on the terrain, then DSM = max(terrain, buildings, points).
+  // Buildings on the terrain, then DSM = max(terrain, buildings, points). Terrain made from the
+  // clouds only carries buildings and goes to --dtm: the DSM already has those returns, and asking
+  // for --dtm must not change it.
   out.dsm = Grid<float>(width, height, kNaN);
   for (std::size_t k = 0; k < out.dsm.size(); ++k) {
-    float v = terrain.values()[k];
+    const float ground = terrain.values()[k];
+    float v = cloud_terrain ? kNaN : ground;
     const float id = footprint_id.values()[k];
     if (id > 0) {
       const std::size_t f = static_cast<std::size_t>(id) - 1;
@@ -404,8 +413,8 @@ DsmResult build_dsm(const DsmOptions& o) {
           top = fp_base[f] + fp_height[f];
         } else if (o.absolute_heights) {
           top = fp_height[f];
-        } else if (!std::isnan(v)) {
-          top = v + fp_height[f];
+        } else if (!std::isnan(ground)) {
+          top = ground + fp_height[f];
         }
       }
       if (!std::isnan(top)) v = std::isnan(v) ? static_cast<float>(top) : std::max(v, static_cast<float>(top));

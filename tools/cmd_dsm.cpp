@@ -21,8 +21,11 @@ Runner setup(CLI::App& app) {
   auto o = std::make_shared<Options>();
   app.add_option("output", o->output, "Output height raster")->required();
   app.add_option("--dem", o->dsm.dems, "Terrain raster(s), any GDAL format and CRS (bilinear)");
-  app.add_option("--points", o->dsm.points, "Point cloud(s): LAS 1.0-1.4, PLY, PCD, or x y z text (.xyz/.txt/.csv)");
-  app.add_option("--s_srs", o->dsm.s_srs, "CRS of the point clouds (default: each file's own; needed for PLY/PCD/XYZ)");
+  app.add_option("--points", o->dsm.points,
+                 "Point cloud(s): LAS 1.0-1.4, PLY, PCD, or x y z text (.xyz/.txt/.csv/.pts)");
+  app.add_option("--s_srs", o->dsm.s_srs,
+                 "CRS of the point clouds (default: each file's own; PLY/PCD/text carry none and are else taken to be "
+                 "in the output CRS)");
   app.add_option("--footprints", o->dsm.footprints, "Building footprints, any OGR polygon layer");
   app.add_option("--height-field", o->dsm.height_field, "Footprint height attribute (above the terrain)");
   app.add_option("--base-field", o->dsm.base_field, "Footprint base height attribute (absolute)");
@@ -64,7 +67,8 @@ Runner setup(CLI::App& app) {
   app.footer(
       "DSM = max(terrain, buildings, gridded returns) cell by cell. A footprint covers the cells whose centre "
       "lies inside it; a footprint without height takes the 90th percentile of the returns inside it. Without a "
-      "DEM, the terrain is the clouds' ground returns (class 2, else the morphological filter), holes filled.");
+      "DEM, --dtm and footprint heights above the terrain use the clouds' ground returns (class 2, else the "
+      "morphological filter), holes filled.");
   return [o] {
     check_output_writable(o->output, o->out.overwrite);
     if (!o->dtm.empty()) check_output_writable(o->dtm, o->out.overwrite);

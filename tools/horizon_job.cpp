@@ -16,12 +16,13 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
   app.add_option("output", o.output, "Output raster")->required();
   app.add_option("-b,--band", o.band, "Input band")->capture_default_str();
   app.add_option("--z-scale", o.z_scale, "Vertical unit factor to metres (0.3048 for feet)")->capture_default_str();
-  app.add_option("--method", o.method,
-                 "Horizon method: sweep (exact, unlimited radius), march, sampled, raycast (Embree reference)")
+  app.add_option(
+         "--method", o.method,
+         "Horizon method: sweep (hull sweep, unlimited radius or --radius), march, sampled, raycast (Embree reference)")
       ->capture_default_str();
   app.add_option("--directions", o.params.directions, "Number of azimuth directions")->capture_default_str();
   app.add_option("--samples", o.params.samples,
-                 "Per direction: samples (sampled, default 16) or exact near crossings (sweep, default 64)")
+                 "Per direction: samples (sampled, default 16) or exact near steps (sweep, default 64); 0 = default")
       ->capture_default_str();
   app.add_option(
          "--radius", o.params.radius,
@@ -92,7 +93,7 @@ HorizonJob run_horizon_job(const HorizonJobOptions& o, const std::string& comman
     m["MAX_ERROR_CHOICE"] =
         choice->method + " with " + std::to_string(choice->entry.directions) + " directions" +
         (choice->method == "sampled" ? " and " + std::to_string(choice->entry.samples) + " samples" : "") +
-        (choice->method == "sweep" ? " and " + std::to_string(choice->entry.samples) + " exact near crossings" : "");
+        (choice->method == "sweep" ? " and " + std::to_string(choice->entry.samples) + " exact near steps" : "");
     m["MAX_ERROR_CALIBRATED_P99"] = std::to_string(choice->entry.worst_p99);
     m["MAX_ERROR_BASIS"] =
         "worst 99th-percentile |svf error| against a 64-direction ray cast over the calibration "

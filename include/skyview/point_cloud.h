@@ -36,7 +36,7 @@ class PointCloud {
 };
 
 // Opens `path` by its content (the LASF signature) or extension: .las/.laz, .ply, .pcd, and
-// .xyz/.txt/.csv text. Throws skyview::Error (one line) for unknown formats, unreadable or
+// .xyz/.txt/.csv/.pts text. Throws skyview::Error (one line) for unknown formats, unreadable or
 // corrupt files, and text lines that are not numbers.
 std::unique_ptr<PointCloud> open_point_cloud(const std::string& path);
 

@@ -115,7 +115,8 @@ void scan_rays(const Terrain& terrain, const Window& window, HorizonField& out, 
   const bool early = s.early_exit;
   constexpr double kInf = std::numeric_limits<double>::infinity();
   const double last_col = terrain.width() - 1, last_row = terrain.height() - 1;
-  std::vector<MaxBlocks> levels;  // coarse first
+  std::vector<MaxBlocks> levels;       // coarse first
+  constexpr double kTieMargin = 1e-6;  // metres
   // Only a placement that reads every crossing has runs of samples inside one block to skip.
   if (early && Placement::kDenseSteps) {
     for (int shift : {5, 3}) {  // 32 and 8 cells
@@ -186,7 +187,9 @@ void scan_rays(const Terrain& terrain, const Window& window, HorizonField& out, 
               const std::size_t b = static_cast<std::size_t>(by) * level.cols + bx;
               if (b == judged[l]) continue;
               judged[l] = b;
-              const double rise = level.max[b] - z0;
+              // The margin keeps a sample on the block's border, whose slope rounds differently
+              // from this bound, from tying with max_t: skipped samples stay strictly below it.
+              const double rise = level.max[b] - z0 + kTieMargin;
               if (rise > 0 && !(rise <= max_t * d)) continue;  // cheap test before the exit distance
               const double x0 = bx * level.size, y0 = by * level.size;
               const double leave_c = pc > 0 ? (x0 + level.size - col) * inv_pc : (pc < 0 ? (x0 - col) * inv_pc : kInf);
@@ -196,7 +199,7 @@ void scan_rays(const Terrain& terrain, const Window& window, HorizonField& out, 
               if (!(rise <= max_t * (rise > 0 ? d : leave))) continue;
               if (lo) {
                 // (fall - c d'^2) / d' has no interior minimum on [d, leave]: check both ends.
-                const double fall = level.min[b] - z0;
+                const double fall = level.min[b] - z0 - kTieMargin;
                 if (!(std::min(fall / d - c * d, fall / leave - c * leave) >= min_t)) continue;
               }
               return std::max(d, leave);

@@ -1,5 +1,5 @@
-// Exact horizons in linear time per direction. For one azimuth, parallel lines one cell apart
-// cover the raster (one sample per row, or per column, along that azimuth). Walking a line from its
+// Horizons in linear time per direction at unlimited radius. For one azimuth, parallel lines one
+// cell apart cover the raster (sampled at every grid-line crossing). Walking a line from its
 // far end back towards the viewer keeps the upper convex hull of the profile already seen; the
 // horizon of the current cell is its tangent to that hull, which is also its neighbour once it
 // is pushed onto the hull (Andrew's monotone chain), so each cell costs amortised O(1) and the
@@ -14,6 +14,7 @@
 // Surface model: the ray-cast reference's mesh over cell centres, read where it can peak (every
 // row and column crossing), as the march reads it. Exact along each cell's own ray for its first
 // near_steps steps; beyond, a cell's slope interpolates its two neighbouring lines' tangents.
+// With a radius, no hulls: every crossing within it along each cell's own ray (a vectorised march).
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -65,9 +66,9 @@ struct LineHull {
 
   // Slope of the tangent from p. Slopes rise along the hull up to the tangent point T and fall
   // after it, so "slope rises into i" holds exactly for i <= T. The nearest point is tried from
-  // the copies; otherwise the search gallops from the near end, then bisects: over flat ground with Earth curvature
-  // nearly every sample is a hull vertex (the folded heights form a dome), the tangent is close to the viewer, and the
-  // near end is the part of the hull just written, still in cache.
+  // the copies (over flat ground with Earth curvature nearly every sample is a hull vertex, the
+  // folded heights forming a dome, and the tangent is the nearest point); otherwise the search
+  // gallops from this line's previous tangent point to bracket T, then bisects.
   double tangent_slope(const HullPoint& p) const {
     const std::size_t n = points.size();
     if (n == 1 || rises(before_last, last, p)) {
@@ -173,7 +174,11 @@ void sweep_direction(const Terrain& terrain, const float* transposed, const Wind
   // radius is read along the cell's own ray and no hull is kept.
   const bool limited = std::isfinite(radius);
   if (limited) near_steps = static_cast<int>(std::min<double>(major_n, std::floor(radius / t_step) + 1));
+  // Hull points are at least far_gap ahead of any cell that queries them (the nearest is the minor
+  // crossing between near_steps and near_steps + 1 steps ahead); where a sheared frame makes that
+  // bound useless (far_gap <= 0), the far field is never skipped.
   const double far_gap = near_steps * t_step - std::abs(t_minor);
+  const double inv_far_gap = far_gap > 0.0 ? 1.0 / far_gap : std::numeric_limits<double>::infinity();
   std::vector<LineHull> hulls(static_cast<std::size_t>(lines));
   std::vector<std::vector<LineSample>> pending(near_steps + 1);  // samples not yet in a hull, by step
   // Lines that advance by columns read the transposed copy, so every line read is contiguous.
@@ -275,7 +280,7 @@ void sweep_direction(const Terrain& terrain, const float* transposed, const Wind
         double near = best[static_cast<std::size_t>(minor)];
         // The far slope of a line is at most its highest point over the smallest gap.
         const double rise = std::max(h0.top, h1.top) - p.z;
-        const double bound = (rise > 0.0 ? rise / far_gap : 0.0) + 2.0 * c * t;
+        const double bound = (rise > 0.0 ? rise * inv_far_gap : 0.0) + 2.0 * c * t;
         if (near >= bound) continue;
         // Slopes, not angles, are interpolated: one arctangent per cell and direction.
         double far = 0.0, weight = 0.0;
@@ -308,10 +313,13 @@ void sweep_direction(const Terrain& terrain, const float* transposed, const Wind
     // This step's line samples wait near_steps steps before joining the hulls.
     auto& mine = pending[(step + near_steps + 1) % (near_steps + 1)];
     // First each line's crossing of a minor grid line since the previous (farther) step: every
-    // line has it at the same fraction of the step.
+    // line has it at the same fraction of the step. It joins the hulls with the previous step's
+    // samples, one step before this step's: the near field reads crossings only up to near_steps
+    // steps ahead, and the one just beyond must be in a hull by then.
     const double base = std::floor(shift), fs = shift - base;
     double q;
     if (step > 0 && crossing_between(fs, fs + k_step, q)) {
+      auto& earlier = pending[(step - 1) % (near_steps + 1)];
       const double lambda = (q - fs) / k_step;
       const float* z0 = z + major * major_stride;
       const float* z1 = z + (major + toward) * major_stride;
@@ -322,7 +330,7 @@ void sweep_direction(const Terrain& terrain, const float* transposed, const Wind
         const double zs = z0[x] + lambda * (static_cast<double>(z1[x]) - z0[x]);
         if (std::isnan(zs)) continue;
         const double t = (major + toward * lambda) * t_major + x * t_minor;
-        mine.push_back({m, {t, sign * zs - c * t * t}});
+        earlier.push_back({m, {t, sign * zs - c * t * t}});
       }
     }
     const long m_first = static_cast<long>(std::ceil(-shift)),
@@ -341,8 +349,7 @@ class SweepEngine final : public HorizonEngine {
  public:
   explicit SweepEngine(const HorizonParams& p) : p_(p) {
     if (p_.samples == 0) p_.samples = 64;
-    if (p_.samples < 1 || p_.samples > 4096)
-      throw Error("--samples (exact near crossings) must be 1 to 4096 for sweep");
+    if (p_.samples < 1 || p_.samples > 4096) throw Error("--samples (exact near steps) must be 1 to 4096 for sweep");
     if (p_.radius < 0.0 || !std::isfinite(p_.radius)) throw Error("--radius must be positive (or 0 for unlimited)");
   }
   std::string_view name() const override { return "sweep"; }
@@ -354,7 +361,7 @@ class SweepEngine final : public HorizonEngine {
     return {{"METHOD", "sweep"},
             {"DIRECTIONS", std::to_string(p_.directions)},
             {"RADIUS_M", p_.radius > 0 ? std::to_string(p_.radius) : "unlimited"},
-            {"NEAR_CROSSINGS", p_.radius > 0 ? "all within the radius" : std::to_string(p_.samples)},
+            {"NEAR_STEPS", p_.radius > 0 ? "all within the radius" : std::to_string(p_.samples)},
             {"CURVATURE", p_.curvature},
             {"REFRACTION", std::to_string(p_.refraction)}};
   }

@@ -50,8 +50,9 @@ class PclCloud final : public PointCloud {
  public:
   explicit PclCloud(const std::string& path) : PointCloud(path) {
     pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);  // our own one-line errors instead
-    const bool ply =
-        std::filesystem::path(path).extension() == ".ply" || std::filesystem::path(path).extension() == ".PLY";
+    // open_point_cloud only sends .ply and .pcd here, in any letter case.
+    const std::string ext = std::filesystem::path(path).extension().string();
+    const bool ply = ext.size() == 4 && (ext[1] | 0x20) == 'p' && (ext[2] | 0x20) == 'l' && (ext[3] | 0x20) == 'y';
     const int rc = ply ? pcl::io::loadPLYFile(path, cloud_) : pcl::io::loadPCDFile(path, cloud_);
     if (rc < 0) throw Error("'" + path + "' is not a readable " + (ply ? "PLY" : "PCD") + " point cloud");
     for (const auto& f : cloud_.fields) {

@@ -67,11 +67,14 @@ class TextCloud final : public PointCloud {
     if (!in) throw Error("cannot open '" + path_ + "': no such file or not readable");
     std::string line;
     double xyz[3];
+    bool first = true;  // the first line that is not a comment may name the columns
     for (std::uint64_t n = 1; std::getline(in, line); ++n) {
       if (is_comment_or_blank(line)) continue;
+      const bool may_be_header = first;
+      first = false;
       if (parse_xyz(line, xyz)) {
         point(xyz);
-      } else if (n != 1) {
+      } else if (!may_be_header) {
         throw Error("'" + path_ + "' line " + std::to_string(n) + ": expected x y z numbers, found '" +
                     line.substr(0, 60) + "'");
       }

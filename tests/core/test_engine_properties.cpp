@@ -41,8 +41,8 @@ TEST_P(EngineProperty, TileWithHaloEqualsWholeRaster) {
 }
 
 TEST_P(EngineProperty, EarlyExitGivesBitIdenticalResults) {
-  // With the lowest angle only the top pyramid level applies; without it the block skips do
-  // too. Nodata holes make blocks of nodata and blocks that mix both.
+  // With and without the lowest angle (blocks are skipped only when both bounds allow it then).
+  // Nodata holes make blocks of nodata and blocks that mix both.
   Terrain t = small_city();
   for (int r = 30; r < 60; ++r) {
     for (int c = 90; c < 130; ++c) t.heights(c, r) = std::numeric_limits<float>::quiet_NaN();

@@ -231,6 +231,25 @@ TEST(DsmBuilder, SyntheticDistrictFromLidarAndFootprints) {
   const int c = static_cast<int>(x - 500000), row = static_cast<int>(6400096 - y);
   EXPECT_NEAR(rel.dtm(c, row), d.ground(x, y), 0.15);  // interpolated under the roof
   EXPECT_NEAR(rel.dsm(c, row), d.ground(x, y) + sw.height, 0.15);
+  // Asking for the terrain does not change the DSM: a sparse survey leaves empty cells, which the
+  // filled terrain must not close.
+  write_las(dir + "/sparse.las", district_lidar(d, 0.3, 0, 5), lo);
+  DsmOptions sparse;
+  sparse.points = {dir + "/sparse.las"};
+  sparse.res = 1.0;
+  sparse.te = o.te;
+  const DsmResult without = build_dsm(sparse);
+  sparse.want_dtm = true;
+  const DsmResult with = build_dsm(sparse);
+  ASSERT_EQ(without.dsm.size(), with.dsm.size());
+  std::size_t empty = 0;
+  for (std::size_t k = 0; k < with.dsm.size(); ++k) {
+    const float a = without.dsm.values()[k], b = with.dsm.values()[k];
+    ASSERT_TRUE(a == b || (std::isnan(a) && std::isnan(b))) << k;
+    empty += std::isnan(a);
+  }
+  EXPECT_GT(empty, with.dsm.size() / 4);
+  for (float v : with.dtm.values()) ASSERT_FALSE(std::isnan(v));
   EXPECT_NEAR(rel.dtm(static_cast<int>(cx - 500000), static_cast<int>(6400096 - cy)), d.ground(cx, cy), 0.02);
   DsmOptions footprints_only;
   footprints_only.footprints = dir + "/d.geojson";

@@ -39,9 +39,10 @@ TEST(PointClouds, TextPlyAndPcdGiveTheSameCellsAsLas) {
   LasWriteOptions lo;
   lo.offset[0] = 500000, lo.offset[1] = 6400000;
   write_las(dir + "/p.las", pts, lo);
-  write_text(dir + "/p.csv",
-             "x,y,z,intensity\n# a comment\n500002.5,6400008.5,10,7\n500002.2,6400008.7,13,7\n\n"
-             "500002.9;6400008.1;16\n500000.5 6400009.5\t5\n");
+  write_text(
+      dir + "/p.csv",
+      "# exported by a scanner\nx,y,z,intensity\n500002.5,6400008.5,10,7\n# a comment\n500002.2,6400008.7,13,7\n\n"
+      "500002.9;6400008.1;16\n500000.5 6400009.5\t5\n");
   write_text(dir + "/p.ply",
              "ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\n"
              "property uchar classification\nend_header\n500002.5 6400008.5 10 6\n500002.2 6400008.7 13 6\n"
