@@ -231,3 +231,30 @@ TEST(SweepWithRadius, MatchesTheMarchWithinTheRadius) {
   }
   EXPECT_LT(sum_near, 0.9 * sum_all);
 }
+
+// Along rows and columns every line runs through cell centres, so the hulls answer exactly: with a
+// single exact near step the sweep's far field (hull, tangent search from the copies, the hint and
+// the gallop) must give the march's horizons over the whole raster.
+TEST(SweepHulls, AlongAxesTheFarFieldEqualsTheMarch) {
+  Terrain t = small_city();
+  for (int r = 60; r < 70; ++r) t.heights(40, r) = std::numeric_limits<float>::quiet_NaN();
+  HorizonParams p;
+  p.directions = 4;
+  p.curvature = "off";
+  p.lower = true;
+  p.samples = 1;
+  const HorizonField sweep = run(t, Window::whole(t), "sweep", p);
+  p.radius = 1000.0;
+  p.samples = 0;
+  const HorizonField march = run(t, Window::whole(t), "march", p);
+  double worst = 0.0;
+  std::size_t far = 0;
+  for (std::size_t i = 0; i < sweep.upper.size(); ++i) {
+    if (std::isnan(march.upper[i])) continue;
+    worst = std::max(
+        {worst, std::abs(double(sweep.upper[i]) - march.upper[i]), std::abs(double(sweep.lower[i]) - march.lower[i])});
+    far += march.upper[i] > 0.05f;
+  }
+  EXPECT_LT(worst, 1e-5) << "radians";
+  EXPECT_GT(far, sweep.upper.size() / 10);
+}
