@@ -292,8 +292,8 @@ DsmResult build_dsm(const DsmOptions& o) {
   // the clouds' bare earth: the mean of their ground returns, holes (under buildings) filled.
   const bool cloud_terrain =
       o.dems.empty() && !clouds.empty() && (o.want_dtm || (layer && o.base_field.empty() && !o.absolute_heights));
-  PointGridder ground_gridder(cloud_terrain ? GridLattice{width, height, x0, y1, res} : GridLattice{1, 1, 0, 1, 1},
-                              GridStatistic::mean);
+  std::optional<PointGridder> ground_gridder;
+  if (cloud_terrain) ground_gridder.emplace(GridLattice{width, height, x0, y1, res}, GridStatistic::mean);
 
   // Points: streamed (or held in memory for the PCL filters), reprojected, filtered, gridded.
   PointGridder gridder({width, height, x0, y1, res}, stat, o.idw_radius, o.idw_power);
@@ -311,7 +311,7 @@ DsmResult build_dsm(const DsmOptions& o) {
         fp_returns[static_cast<std::size_t>(id) - 1].push_back(static_cast<float>(z));
       }
     }
-    if (cloud_terrain && ground) ground_gridder.add(x, y, static_cast<float>(z));
+    if (ground_gridder && ground) ground_gridder->add(x, y, static_cast<float>(z));
     if (!keep_class(cls, ground)) return;
     ++out.report.points_used;
     gridder.add(x, y, static_cast<float>(z));
@@ -385,7 +385,7 @@ DsmResult build_dsm(const DsmOptions& o) {
   }
   Grid<float> pts = gridder.finish(&out.report.cells_from_points);
   if (cloud_terrain) {
-    terrain = ground_gridder.finish();
+    terrain = ground_gridder->finish();
     if (std::all_of(terrain.values().begin(), terrain.values().end(), [](float v) { return std::isnan(v); })) {
       throw Error("the clouds hold no ground returns to make the terrain from; give --dem");
     }

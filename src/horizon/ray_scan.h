@@ -182,7 +182,7 @@ void scan_rays(const Terrain& terrain, const Window& window, HorizonField& out, 
             // judged once, when the ray enters it: checking every sample cost more than it saved.
             for (std::size_t l = 0; l < levels.size(); ++l) {
               const MaxBlocks& level = levels[l];
-              const int bx = std::min(static_cast<int>(x) >> level.shift, level.cols - 1);
+              const int bx = static_cast<int>(x) >> level.shift;  // x <= last_col: always a block
               const int by = static_cast<int>(y) >> level.shift;
               const std::size_t b = static_cast<std::size_t>(by) * level.cols + bx;
               if (b == judged[l]) continue;
