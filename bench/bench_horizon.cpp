@@ -63,8 +63,10 @@ void BM_March16R100NoEarlyExit(benchmark::State& s) {
   p.early_exit = false;
   run(s, "march", p);
 }
+// The argument is the number of exact near steps (--samples); 64 is the default.
 void BM_Sweep16(benchmark::State& s) {
   skyview::HorizonParams p;
+  p.samples = static_cast<int>(s.range(0));
   run(s, "sweep", p);
 }
 void BM_Sweep16WithLower(benchmark::State& s) {
@@ -79,6 +81,6 @@ BENCHMARK(BM_Sampled16x16)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTim
 BENCHMARK(BM_Sampled16x16NoEarlyExit)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_March16R100)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 BENCHMARK(BM_March16R100NoEarlyExit)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
-BENCHMARK(BM_Sweep16)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+BENCHMARK(BM_Sweep16)->Arg(64)->Arg(8)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_Sweep16WithLower)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK_MAIN();

@@ -87,6 +87,7 @@ SkyViewProducts sky_view_products(const Terrain& terrain, const Window& window, 
   std::vector<unsigned char> leaves(static_cast<std::size_t>(w) * h, 0);
   tbb::parallel_for(0, h, [&](int wr) {
     const int row = window.row0 + wr;
+    std::vector<float> up(static_cast<std::size_t>(n));  // one cell's horizons, gathered from the planes
     for (int wc = 0; wc < w; ++wc) {
       const int col = window.col0 + wc;
       const std::size_t cell = field.cell(wc, wr);
@@ -95,19 +96,18 @@ SkyViewProducts sky_view_products(const Terrain& terrain, const Window& window, 
         leaves[cell] = 1;
         if (edge == EdgeMode::nodata) continue;
       }
-      const float* up = field.upper_of(cell);
-      p.svf(wc, wr) = static_cast<float>(svf_horizontal(up, n));
-      p.sky_visibility(wc, wr) = static_cast<float>(sky_visibility(up, n));
+      for (int k = 0; k < n; ++k) up[k] = field.upper_at(cell, k);
+      p.svf(wc, wr) = static_cast<float>(svf_horizontal(up.data(), n));
+      p.sky_visibility(wc, wr) = static_cast<float>(sky_visibility(up.data(), n));
       double slope = 0, aspect = 0;
       horn_slope_aspect(terrain, col, row, slope, aspect);
       const double rot = field.rotation.empty() ? 0.0 : field.rotation[cell];
-      p.svf_surface(wc, wr) = static_cast<float>(svf_tilted(up, n, rot, slope, aspect));
+      p.svf_surface(wc, wr) = static_cast<float>(svf_tilted(up.data(), n, rot, slope, aspect));
       double pos = 0.0, neg = 0.0;
       for (int k = 0; k < n; ++k) pos += 90.0 - up[k] * 180.0 / kPi;
       p.openness_positive(wc, wr) = static_cast<float>(pos / n);
       if (has_lower) {
-        const float* lo = field.lower_of(cell);
-        for (int k = 0; k < n; ++k) neg += 90.0 + lo[k] * 180.0 / kPi;
+        for (int k = 0; k < n; ++k) neg += 90.0 + field.lower_at(cell, k) * 180.0 / kPi;
         p.openness_negative(wc, wr) = static_cast<float>(neg / n);
       }
     }

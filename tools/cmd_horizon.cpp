@@ -27,7 +27,7 @@ Runner setup(CLI::App& app) {
             (job.edge == EdgeMode::nodata && search_circle_leaves_raster(job.terrain, c, r, job.engine->radius()));
         for (int k = 0; k < n; ++k) {
           planes[k][cell] = drop ? std::numeric_limits<float>::quiet_NaN()
-                                 : static_cast<float>(job.field.upper_of(cell)[k] * 180.0 / M_PI);
+                                 : static_cast<float>(job.field.upper_at(cell, k) * 180.0 / M_PI);
         }
       }
     }

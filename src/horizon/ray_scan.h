@@ -145,8 +145,9 @@ void scan_rays(const Terrain& terrain, const Window& window, HorizonField& out, 
         const Jacobian j = terrain.frame.at(col + terrain.origin_col, row + terrain.origin_row);
         const double det = j.a * j.d - j.b * j.c;
         const double ie_c = j.d / det, in_c = -j.b / det, ie_r = -j.c / det, in_r = j.a / det;
-        float* up = out.upper_of(cell);
-        float* lo = s.lower ? out.lower_of(cell) : nullptr;
+        float* up = out.upper.data() + cell;
+        float* lo = s.lower ? out.lower.data() + cell : nullptr;
+        const std::size_t plane = out.cells();
         for (int k = 0; k < s.directions; ++k) {
           const double east = sin_k[k] * cr + cos_k[k] * sr;   // sin(az + rot)
           const double north = cos_k[k] * cr - sin_k[k] * sr;  // cos(az + rot)
@@ -206,8 +207,8 @@ void scan_rays(const Terrain& terrain, const Window& window, HorizonField& out, 
             }
             return d;
           });
-          up[k] = std::isinf(max_t) ? 0.0f : static_cast<float>(std::atan(max_t));
-          if (lo) lo[k] = std::isinf(min_t) ? 0.0f : static_cast<float>(std::atan(min_t));
+          up[plane * k] = std::isinf(max_t) ? 0.0f : static_cast<float>(std::atan(max_t));
+          if (lo) lo[plane * k] = std::isinf(min_t) ? 0.0f : static_cast<float>(std::atan(min_t));
         }
       }
       progress.advance(window.cols);

@@ -224,10 +224,10 @@ class RaycastEngine final : public HorizonEngine {
           const std::size_t cell_index = out.cell(wc, wr);
           const double z = terrain.heights(col, row);
           for (int k = 0; k < n; ++k) {
-            out.upper_of(cell_index)[k] =
+            out.upper_at(cell_index, k) =
                 static_cast<float>(bisect_horizon(upper, col, row, z + lift, sin_k[k], cos_k[k], range));
             if (lower) {
-              out.lower_of(cell_index)[k] =
+              out.lower_at(cell_index, k) =
                   static_cast<float>(-bisect_horizon(*lower, col, row, -z + lift, sin_k[k], cos_k[k], range));
             }
           }

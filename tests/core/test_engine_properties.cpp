@@ -33,8 +33,8 @@ TEST_P(EngineProperty, TileWithHaloEqualsWholeRaster) {
   for (int r = 0; r < tile.rows; ++r) {
     for (int c = 0; c < tile.cols; ++c) {
       for (int k = 0; k < p.directions; ++k) {
-        ASSERT_EQ(f.upper_of(f.cell(c, r))[k], whole.upper_of(whole.cell(tile.col0 + c, tile.row0 + r))[k]);
-        ASSERT_EQ(f.lower_of(f.cell(c, r))[k], whole.lower_of(whole.cell(tile.col0 + c, tile.row0 + r))[k]);
+        ASSERT_EQ(f.upper_at(f.cell(c, r), k), whole.upper_at(whole.cell(tile.col0 + c, tile.row0 + r), k));
+        ASSERT_EQ(f.lower_at(f.cell(c, r), k), whole.lower_at(whole.cell(tile.col0 + c, tile.row0 + r), k));
       }
     }
   }
@@ -78,8 +78,8 @@ TEST_P(EngineProperty, NodataCellsGiveNodataAndNeverOcclude) {
   HorizonParams p;
   p.radius = 15.0;
   const HorizonField f = run(t, Window::whole(t), GetParam(), p);
-  EXPECT_TRUE(std::isnan(f.upper_of(f.cell(25, 20))[0]));
-  for (int k = 0; k < p.directions; ++k) EXPECT_EQ(f.upper_of(f.cell(20, 20))[k], 0.0f);
+  EXPECT_TRUE(std::isnan(f.upper_at(f.cell(25, 20), 0)));
+  for (int k = 0; k < p.directions; ++k) EXPECT_EQ(f.upper_at(f.cell(20, 20), k), 0.0f);
   const SkyViewProducts s = sky_view_products(t, Window::whole(t), f, p.radius, EdgeMode::open);
   EXPECT_TRUE(std::isnan(s.svf(25, 20)));
   EXPECT_DOUBLE_EQ(s.svf(20, 20), 1.0);
@@ -157,7 +157,7 @@ TEST(SweepMethod, MatchesMarchWithUnlimitedRadiusOnMountains) {
   for (int r = 5; r < 116; ++r) {
     for (int c = 5; c < 116; ++c) {
       for (int k = 0; k < 16; ++k) {
-        worst = std::max(worst, std::abs(double(s.upper_of(s.cell(c, r))[k]) - m.upper_of(m.cell(c, r))[k]));
+        worst = std::max(worst, std::abs(double(s.upper_at(s.cell(c, r), k)) - m.upper_at(m.cell(c, r), k)));
       }
       max_svf = std::max(max_svf, std::abs(double(ps.svf(c, r)) - pm.svf(c, r)));
     }
@@ -181,8 +181,8 @@ TEST(SweepMethod, CurvatureLowersDistantHorizonsByTheExpectedDrop) {
   const HorizonField curved = run(t, Window::whole(t), "sweep", p);
   const double d = 50000.0;  // row 500 looks north at row 0
   const double drop = d * d / (2.0 * t.frame.earth_radius());
-  EXPECT_NEAR(flat.upper_of(flat.cell(0, 500))[0], std::atan(1000.0 / d), 1e-6);
-  EXPECT_NEAR(curved.upper_of(curved.cell(0, 500))[0], std::atan((1000.0 - drop) / d), 1e-6);
+  EXPECT_NEAR(flat.upper_at(flat.cell(0, 500), 0), std::atan(1000.0 / d), 1e-6);
+  EXPECT_NEAR(curved.upper_at(curved.cell(0, 500), 0), std::atan((1000.0 - drop) / d), 1e-6);
   EXPECT_THROW(make_horizon_engine("sweep",
                                    [] {
                                      HorizonParams q;
