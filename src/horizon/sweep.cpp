@@ -296,6 +296,19 @@ inline long first_cell(long m, double shift) {
   return i;
 }
 
+// What a strip's previous cell (one step ahead of the current one) proved about its two lines: an
+// upper bound of its (folded) tangent slope to each. Hull points it saw are farther from the
+// current cell by the same distance dt, so their slopes from here are at most a weighted mean of
+// that bound and the slope from here to the previous cell; only the points pushed since (at most
+// two per line: its nearest) need checking. Where the near field beats all of that, the far field
+// cannot change the horizon and the tangent search is skipped: four in five searches on a city
+// with 64 near steps, while the bound on the hulls' highest points alone skipped one in twelve.
+struct StripBound {
+  int step = -2;  // step of the strip's previous cell
+  double t = 0, z = 0;
+  double slope[2] = {kInf, kInf};
+};
+
 constexpr int kBand = 256;  // cells' strips per band; the band keeps kBand + 1 hulls
 
 // One direction, shared by its bands. Cells between lines m and m + 1 (one per step: the strip is a
@@ -318,8 +331,8 @@ class DirectionSweep {
     // Hull points are at least far_gap ahead of any cell that queries them (the nearest is the
     // minor crossing between near_steps and near_steps + 1 steps ahead); where a sheared frame
     // makes that bound useless (far_gap <= 0), the far field is never skipped.
-    const double far_gap = near_steps * g.t_step - std::abs(g.t_minor);
-    inv_far_gap_ = far_gap > 0.0 ? 1.0 / far_gap : kInf;
+    far_gap_ = std::max(0.0, near_steps * g.t_step - std::abs(g.t_minor));
+    inv_far_gap_ = far_gap_ > 0.0 ? 1.0 / far_gap_ : kInf;
   }
 
   // Lines holding the window's cells: the first band's first line and the number of bands.
@@ -335,6 +348,7 @@ class DirectionSweep {
   void run_band(long m0, LineHull* hulls, float* best) const {
     const SweepGeometry& g = g_;
     for (int l = 0; l <= kBand; ++l) hulls[l].clear();
+    StripBound strips[kBand];
     for (int step = 0; step <= last_step_; ++step) {
       // Samples from more than near_steps steps back join their line's hull, far to near: the
       // row crossing, then the minor grid line crossed just after it.
@@ -346,7 +360,7 @@ class DirectionSweep {
       const int b = static_cast<int>(std::min<long>(hi_, first_cell(m0 + kBand, here.shift)));
       if (a >= b) continue;
       near_field(g, near_, major, a, b, best);
-      far_field(m0, here, a, b, hulls, best);
+      far_field(m0, step, here, a, b, hulls, strips, best);
       write_angles(g, window_, major, a, b, best, sign_, plane_);
     }
   }
@@ -388,7 +402,8 @@ class DirectionSweep {
   // Beyond the near field each cell, at its own height, takes its tangent to the hulls of the two
   // lines beside it, the slopes interpolated by its offset, unless the hulls' highest points
   // cannot beat its near field. Slopes, not angles, are interpolated: one arctangent per cell.
-  void far_field(long m0, const StepLines& here, int a, int b, LineHull* hulls, float* best) const {
+  void far_field(long m0, int step, const StepLines& here, int a, int b, LineHull* hulls, StripBound* strips,
+                 float* best) const {
     const float* zrow = g_.row(here.major);
     for (int minor = a; minor < b; ++minor) {
       const float zc = zrow[minor];
@@ -401,20 +416,44 @@ class DirectionSweep {
       LineHull& h0 = hulls[m - m0];
       LineHull& h1 = hulls[m - m0 + 1];
       const double near = best[minor];
-      // The far slope of a line is at most its highest point over the smallest gap.
+      const double near_folded = near - 2.0 * c_ * t;  // in the hulls' folded heights
+      StripBound& previous = strips[m - m0];
+      // The far slope of a line is at most its highest point over the smallest gap; or, from the
+      // strip's previous cell, see StripBound.
       const double rise = std::max(h0.top, h1.top) - p.z;
-      const double bound = (rise > 0.0 ? rise * inv_far_gap_ : 0.0) + 2.0 * c_ * t;
-      if (near >= bound) continue;
+      bool hidden = near_folded >= (rise > 0.0 ? rise * inv_far_gap_ : 0.0);
+      if (!hidden && previous.step == step - 1) {
+        const double dt = previous.t - t;
+        auto beaten = [&](const LineHull& h, double bound) {
+          auto below = [&](const HullPoint& q) { return q.z - p.z <= near_folded * (q.t - t); };
+          return bound <= near_folded && (h.n == 0 || (below(h.last) && (h.n < 2 || below(h.before_last))));
+        };
+        // Old points are at least far_gap_ from the previous cell: their slopes from here are at
+        // most (bound far_gap + rise) / (far_gap + dt), or the bound itself, farther away.
+        const double bound = std::max(previous.slope[0], previous.slope[1]);
+        hidden = dt > 0.0 && bound * far_gap_ + (previous.z - p.z) <= near_folded * (far_gap_ + dt) &&
+                 beaten(h0, previous.slope[0]) && beaten(h1, previous.slope[1]);
+      }
+      previous.step = step;
+      previous.t = t;
+      previous.z = p.z;
+      if (hidden) {
+        previous.slope[0] = previous.slope[1] = near_folded;
+        continue;
+      }
+      // Slopes are interpolated in folded heights: the weights sum to one wherever both lines
+      // have hulls, and adding 2ct back commutes with the weighted mean.
       double far = 0.0, weight = 0.0;
-      if (fu < 1.0 && h0.n > 0) {
-        far += (1.0 - fu) * (h0.tangent_slope(p, 0) + 2.0 * c_ * t);
-        weight += 1.0 - fu;
+      previous.slope[0] = previous.slope[1] = kInf;  // not searched: unknown
+      if (fu < 1.0) {
+        previous.slope[0] = h0.n > 0 ? h0.tangent_slope(p, 0) : -kInf;
+        if (h0.n > 0) far += (1.0 - fu) * previous.slope[0], weight += 1.0 - fu;
       }
-      if (fu > 0.0 && h1.n > 0) {
-        far += fu * (h1.tangent_slope(p, 1) + 2.0 * c_ * t);
-        weight += fu;
+      if (fu > 0.0) {
+        previous.slope[1] = h1.n > 0 ? h1.tangent_slope(p, 1) : -kInf;
+        if (h1.n > 0) far += fu * previous.slope[1], weight += fu;
       }
-      if (weight > 0.0) best[minor] = static_cast<float>(std::max(near, far / weight));
+      if (weight > 0.0) best[minor] = static_cast<float>(std::max(near, far / weight + 2.0 * c_ * t));
     }
   }
 
@@ -422,7 +461,7 @@ class DirectionSweep {
   const Window& window_;
   int near_steps_;
   float* plane_;
-  double sign_ = 1, c_ = 0, inv_far_gap_ = kInf;
+  double sign_ = 1, c_ = 0, far_gap_ = 0, inv_far_gap_ = kInf;
   std::vector<NearCrossing> near_;
   std::vector<StepLines> steps_;
   int wa_ = 0, wb_ = 0, lo_ = 0, hi_ = 0, last_step_ = -1;
