@@ -65,7 +65,7 @@ std::vector<BenchConfig> default_bench_grid(const std::vector<std::string>& meth
       }
     } else if (m == "sweep") {
       for (int d : {8, 16, 32, 64}) {
-        for (int near : {8, 64, 128}) {
+        for (int near : {8, 16, 32, 64, 128}) {
           BenchConfig c{m, {}};
           c.params.directions = d;
           c.params.samples = near;

@@ -311,6 +311,11 @@ struct StripBound {
 
 constexpr int kBand = 256;  // cells' strips per band; the band keeps kBand + 1 hulls
 
+// Scratch for one step's samples of a band's lines (row crossings and minor grid crossings).
+struct BandSamples {
+  double row_t[kBand + 1], row_z[kBand + 1], cross_t[kBand + 1], cross_z[kBand + 1];
+};
+
 // One direction, shared by its bands. Cells between lines m and m + 1 (one per step: the strip is a
 // cell wide) take their far field from those two lines' hulls; a band walks kBand neighbouring
 // strips together so that the near field still runs as a vector loop over kBand cells of a row.
@@ -349,10 +354,11 @@ class DirectionSweep {
     const SweepGeometry& g = g_;
     for (int l = 0; l <= kBand; ++l) hulls[l].clear();
     StripBound strips[kBand];
+    BandSamples samples;
     for (int step = 0; step <= last_step_; ++step) {
       // Samples from more than near_steps steps back join their line's hull, far to near: the
       // row crossing, then the minor grid line crossed just after it.
-      if (step > near_steps_) add_samples(m0, step - near_steps_ - 1, hulls);
+      if (step > near_steps_) add_samples(m0, step - near_steps_ - 1, hulls, samples);
       const StepLines& here = steps_[static_cast<std::size_t>(step)];
       const int major = here.major;
       if (major < wa_ || major >= wb_) continue;
@@ -369,34 +375,49 @@ class DirectionSweep {
   double min_shift() const { return std::min(wa_ * g_.k, (wb_ - 1) * g_.k); }
   double max_shift() const { return std::max(wa_ * g_.k, (wb_ - 1) * g_.k); }
 
-  void push(LineHull& hull, double major, double minor, double zs) const {
-    if (std::isnan(zs)) return;  // nodata never occludes
-    const double t = major * g_.t_major + minor * g_.t_minor;
-    hull.push({t, sign_ * zs - c_ * t * t});
-  }
-
-  void add_samples(long m0, int step, LineHull* hulls) const {
+  // This step's samples of the band's lines join their hulls, far to near on each line: the row
+  // crossing, then the minor grid line crossed just after it. Every line sits at the same fraction
+  // of a cell, so the heights come from vector loops over the lines; only the pushes go line by line.
+  void add_samples(long m0, int step, LineHull* hulls, BandSamples& out) const {
     const SweepGeometry& g = g_;
     const StepLines& s = steps_[static_cast<std::size_t>(step)];
-    const StepLines* next = step + 1 < g.major_n ? &steps_[static_cast<std::size_t>(step) + 1] : nullptr;
-    const bool crossing = next && next->crossing;
-    const float* zr = g.row(s.major);
-    for (int l = 0; l <= kBand; ++l) {
-      const long m = m0 + l;
-      const double x = static_cast<double>(m) + s.shift;
-      if (x >= 0.0 && x <= g.minor_n - 1) {  // linear along the minor axis
-        const int i0 = std::min(static_cast<int>(x), g.minor_n - 1);
-        const double fx = x - i0, z0 = zr[i0];
-        // x may exceed minor_n - 1 by a rounding error: never read past the row.
-        push(hulls[l], s.major, x, fx > 0.0 && i0 + 1 < g.minor_n ? z0 + fx * (zr[i0 + 1] - z0) : z0);
-      }
-      if (crossing) {  // linear across the two rows, along the minor grid line
-        const long x = m + next->cross_at;
-        if (x < 0 || x >= g.minor_n) continue;
-        const double z0 = g.row(next->major)[x], z1 = g.row(next->major + g.toward)[x];
-        push(hulls[l], next->major + g.toward * next->lambda, static_cast<double>(x), z0 + next->lambda * (z1 - z0));
-      }
+    auto clamp_line = [](long l) { return static_cast<int>(std::clamp<long>(l, 0, kBand + 1)); };
+    // Row crossings, linear along the minor axis: line m0 + l lies at cell i0 + l plus fx.
+    const double base = std::floor(s.shift), fx = s.shift - base;
+    const long i0 = m0 + static_cast<long>(base);
+    const int ra = clamp_line(-i0), rb = clamp_line(g.minor_n - (fx > 0.0 ? 1 : 0) - i0);
+    const float* zr = g.row(s.major) + i0;
+    const double t0 = s.major * g_.t_major + (static_cast<double>(i0) + fx) * g_.t_minor;
+    if (fx > 0.0) {
+      for (int l = ra; l < rb; ++l) out.row_z[l] = zr[l] + fx * (static_cast<double>(zr[l + 1]) - zr[l]);
+    } else {
+      for (int l = ra; l < rb; ++l) out.row_z[l] = zr[l];
     }
+    for (int l = ra; l < rb; ++l) fold(t0 + l * g_.t_minor, out.row_t[l], out.row_z[l]);
+    // Crossings of a minor grid line, linear across the two rows: line m0 + l at cell x0 + l.
+    const StepLines* next = step + 1 < g.major_n ? &steps_[static_cast<std::size_t>(step) + 1] : nullptr;
+    int ca = 0, cb = 0;
+    if (next && next->crossing) {
+      const long x0 = m0 + next->cross_at;
+      ca = clamp_line(-x0), cb = clamp_line(g.minor_n - x0);
+      const float* z0 = g.row(next->major) + x0;
+      const float* z1 = g.row(next->major + g.toward) + x0;
+      const double lambda = next->lambda;
+      const double tc = (next->major + g.toward * lambda) * g_.t_major + static_cast<double>(x0) * g_.t_minor;
+      for (int l = ca; l < cb; ++l) out.cross_z[l] = z0[l] + lambda * (static_cast<double>(z1[l]) - z0[l]);
+      for (int l = ca; l < cb; ++l) fold(tc + l * g_.t_minor, out.cross_t[l], out.cross_z[l]);
+    }
+    // NaN heights (nodata) never occlude.
+    for (int l = std::min(ra, ca); l < std::max(rb, cb); ++l) {
+      if (l >= ra && l < rb && !std::isnan(out.row_z[l])) hulls[l].push({out.row_t[l], out.row_z[l]});
+      if (l >= ca && l < cb && !std::isnan(out.cross_z[l])) hulls[l].push({out.cross_t[l], out.cross_z[l]});
+    }
+  }
+
+  // Position t along the ray and height folded for Earth curvature (see the top of this file).
+  void fold(double t, double& t_out, double& z) const {
+    t_out = t;
+    z = sign_ * z - c_ * t * t;
   }
 
   // Beyond the near field each cell, at its own height, takes its tangent to the hulls of the two
