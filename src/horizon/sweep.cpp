@@ -69,7 +69,14 @@ struct LineHull {
     hint[0] = hint[1] = 0;
   }
 
-  void push(const HullPoint& p) {
+  // `same`: a sample nearer than this to the nearest point (a minor crossing that rounding put on
+  // a row crossing) would make two points of equal slope from every viewer, and the tangent
+  // search needs slopes strictly rising up to the tangent: the higher of the two stays.
+  void push(const HullPoint& p, double same) {
+    if (n > 0 && points[n - 1].t - p.t < same) {
+      if (p.z <= points[n - 1].z) return;
+      --n;
+    }
     while (n >= 2) {
       const HullPoint& a = points[n - 1];
       const HullPoint& b = points[n - 2];
@@ -165,6 +172,10 @@ SweepGeometry make_geometry(const Terrain& terrain, const float* transposed, dou
   g.major_n = g.by_rows ? H : W;
   g.minor_n = g.by_rows ? W : H;
   g.k = g.by_rows ? pc / pr : pr / pc;
+  // Along an axis or a diagonal of square cells, keep lines exactly on cell centres and corners:
+  // a drift of 1 - 1e-16 per step would put a minor crossing a rounding error from every sample.
+  if (std::abs(g.k) < 1e-12) g.k = 0.0;
+  if (std::abs(std::abs(g.k) - 1.0) < 1e-12) g.k = std::copysign(1.0, g.k);
   g.t_major = g.by_rows ? t_row : t_col;
   g.t_minor = g.by_rows ? t_col : t_row;
   g.toward = (g.by_rows ? pr < 0 : pc < 0) ? -1 : 1;  // the viewer looks towards index 0 when -1
@@ -321,9 +332,9 @@ struct BandSamples {
 // strips together so that the near field still runs as a vector loop over kBand cells of a row.
 class DirectionSweep {
  public:
-  DirectionSweep(const SweepGeometry& g, const Window& window, int near_steps, double curvature, bool negate,
-                 float* plane)
-      : g_(g), window_(window), near_steps_(near_steps), plane_(plane) {
+  DirectionSweep(const SweepGeometry& g, const Window& window, int near_steps, bool early_exit, double curvature,
+                 bool negate, float* plane)
+      : g_(g), window_(window), near_steps_(near_steps), early_exit_(early_exit), plane_(plane) {
     sign_ = negate ? -1.0 : 1.0;
     c_ = negate ? -curvature : curvature;
     near_ = near_crossings(g, near_steps, kInf, c_, sign_);
@@ -336,6 +347,7 @@ class DirectionSweep {
     // Hull points are at least far_gap ahead of any cell that queries them (the nearest is the
     // minor crossing between near_steps and near_steps + 1 steps ahead); where a sheared frame
     // makes that bound useless (far_gap <= 0), the far field is never skipped.
+    same_ = 1e-9 * g.t_step;
     far_gap_ = std::max(0.0, near_steps * g.t_step - std::abs(g.t_minor));
     inv_far_gap_ = far_gap_ > 0.0 ? 1.0 / far_gap_ : kInf;
   }
@@ -409,8 +421,8 @@ class DirectionSweep {
     }
     // NaN heights (nodata) never occlude.
     for (int l = std::min(ra, ca); l < std::max(rb, cb); ++l) {
-      if (l >= ra && l < rb && !std::isnan(out.row_z[l])) hulls[l].push({out.row_t[l], out.row_z[l]});
-      if (l >= ca && l < cb && !std::isnan(out.cross_z[l])) hulls[l].push({out.cross_t[l], out.cross_z[l]});
+      if (l >= ra && l < rb && !std::isnan(out.row_z[l])) hulls[l].push({out.row_t[l], out.row_z[l]}, same_);
+      if (l >= ca && l < cb && !std::isnan(out.cross_z[l])) hulls[l].push({out.cross_t[l], out.cross_z[l]}, same_);
     }
   }
 
@@ -442,8 +454,8 @@ class DirectionSweep {
       // The far slope of a line is at most its highest point over the smallest gap; or, from the
       // strip's previous cell, see StripBound.
       const double rise = std::max(h0.top, h1.top) - p.z;
-      bool hidden = near_folded >= (rise > 0.0 ? rise * inv_far_gap_ : 0.0);
-      if (!hidden && previous.step == step - 1) {
+      bool hidden = early_exit_ && near_folded >= (rise > 0.0 ? rise * inv_far_gap_ : 0.0);
+      if (early_exit_ && !hidden && previous.step == step - 1) {
         const double dt = previous.t - t;
         auto beaten = [&](const LineHull& h, double bound) {
           auto below = [&](const HullPoint& q) { return q.z - p.z <= near_folded * (q.t - t); };
@@ -481,8 +493,10 @@ class DirectionSweep {
   const SweepGeometry& g_;
   const Window& window_;
   int near_steps_;
+  bool early_exit_;  // skip searches that cannot change the horizon (off: for tests)
   float* plane_;
   double sign_ = 1, c_ = 0, far_gap_ = 0, inv_far_gap_ = kInf;
+  double same_ = 0;  // samples closer than this along a line are one (see LineHull::push)
   std::vector<NearCrossing> near_;
   std::vector<StepLines> steps_;
   int wa_ = 0, wb_ = 0, lo_ = 0, hi_ = 0, last_step_ = -1;
@@ -502,7 +516,7 @@ class DirectionSweep {
 // crossing, so 64 steps cost little more than 8; they bring the city sample's p99 from 0.009 to
 // 0.002. With a radius there are no hulls: every crossing within it is near.
 void sweep_direction(const Terrain& terrain, const float* transposed, const Window& window, double azimuth,
-                     double curvature, bool negate, int near_steps, double radius, float* plane) {
+                     double curvature, bool negate, int near_steps, bool early_exit, double radius, float* plane) {
   const SweepGeometry g = make_geometry(terrain, transposed, azimuth);
   std::vector<float> best(static_cast<std::size_t>(g.minor_n));
   if (std::isfinite(radius)) {
@@ -519,7 +533,7 @@ void sweep_direction(const Terrain& terrain, const float* transposed, const Wind
     }
     return;
   }
-  const DirectionSweep sweep(g, window, near_steps, curvature, negate, plane);
+  const DirectionSweep sweep(g, window, near_steps, early_exit, curvature, negate, plane);
   const std::size_t capacity = 2 * static_cast<std::size_t>(g.major_n) + 2;
   std::unique_ptr<HullPoint[]> arena(new HullPoint[capacity * (kBand + 1)]);
   std::vector<LineHull> hulls(kBand + 1);
@@ -567,7 +581,7 @@ class SweepEngine final : public HorizonEngine {
       const bool negate = task >= p_.directions;
       float* plane = negate ? out.lower_plane(k) : out.upper_plane(k);
       sweep_direction(terrain, transposed.data(), window, sector_azimuth(k, p_.directions), c, negate, p_.samples,
-                      radius(), plane);
+                      p_.early_exit, radius(), plane);
       progress.advance(per_pass);
     });
   }

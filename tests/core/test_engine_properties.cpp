@@ -258,3 +258,36 @@ TEST(SweepHulls, AlongAxesTheFarFieldEqualsTheMarch) {
   EXPECT_LT(worst, 1e-5) << "radians";
   EXPECT_GT(far, sweep.upper.size() / 10);
 }
+
+// The sweep skips a far-field search where the hulls' highest points, or the bound carried along
+// the strip from the previous cell, show that the near field wins. Skipping must change nothing:
+// with nodata holes, the lowest angle (negated heights), Earth curvature folded into the hulls (it
+// makes flat ground a dome whose every sample is a hull point) and few or many exact near steps.
+TEST(SweepHulls, SkippedSearchesChangeNothing) {
+  Terrain t = small_city();
+  for (int r = 30; r < 60; ++r) {
+    for (int c = 90; c < 130; ++c) t.heights(c, r) = std::numeric_limits<float>::quiet_NaN();
+  }
+  for (int r = 60; r < 70; ++r) t.heights(40, r) = std::numeric_limits<float>::quiet_NaN();
+  for (const char* curvature : {"off", "on"}) {
+    for (const int near : {1, 8, 64}) {
+      HorizonParams p;
+      p.directions = 24;
+      p.curvature = curvature;
+      p.lower = true;
+      p.samples = near;
+      const HorizonField fast = run(t, Window::whole(t), "sweep", p);
+      p.early_exit = false;
+      const HorizonField slow = run(t, Window::whole(t), "sweep", p);
+      ASSERT_EQ(fast.upper.size(), slow.upper.size());
+      for (std::size_t i = 0; i < fast.upper.size(); ++i) {
+        if (std::isnan(slow.upper[i])) {
+          ASSERT_TRUE(std::isnan(fast.upper[i])) << i;
+          continue;
+        }
+        ASSERT_EQ(fast.upper[i], slow.upper[i]) << i << " curvature " << curvature << " near " << near;
+        ASSERT_EQ(fast.lower[i], slow.lower[i]) << i << " curvature " << curvature << " near " << near;
+      }
+    }
+  }
+}
