@@ -44,7 +44,7 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
                  "Choose the cheapest method and parameters whose calibrated 99th-percentile svf error is below "
                  "this (overrides --method, --directions, --samples, --radius)")
       ->check(CLI::Range(0.0, 1.0));
-  app.add_flag("!--no-early-exit", o.params.early_exit, "Disable the max-height early termination (same results)");
+  app.add_flag("!--no-early-exit", o.params.early_exit, "Disable early termination (march and sampled: the max-height pyramid; sweep: skipped far-field searches); same results");
   add_output_options(app, o.out);
 }
 
