@@ -13,7 +13,10 @@ inline double fast_atan(double s) {
   constexpr double kPi2 = 1.5707963267948966, kPi4 = 0.78539816339744831;
   const double x = std::abs(s);
   const bool big = x > kTan3Pi8, mid = x > kTanPi8;
-  const double r = big ? -1.0 / x : (mid ? (x - 1.0) / (x + 1.0) : x);
+  // Every candidate computed, then selected, and one division (x / 1 is exact): a loop over slopes
+  // vectorises, where arithmetic under a branch would not (it could trap).
+  const double below = x - 1.0, above = x + 1.0;
+  const double r = (big ? -1.0 : (mid ? below : x)) / (big ? x : (mid ? above : 1.0));
   const double base = big ? kPi2 : (mid ? kPi4 : 0.0);
   const double z = r * r;
   const double p = 0.99999999999135447 +
