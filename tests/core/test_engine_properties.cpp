@@ -291,3 +291,33 @@ TEST(SweepHulls, SkippedSearchesChangeNothing) {
     }
   }
 }
+
+// A window of the buffer must get exactly the horizons the whole buffer gives its cells: the sweep
+// walks only the bands and steps that hold the window's cells, and its skip bounds and tangent
+// hints start afresh there. Off-axis directions, nodata, the lowest angle and curvature included.
+TEST(SweepHulls, AWindowGetsTheWholeRastersHorizons) {
+  Terrain t = small_city();
+  for (int r = 60; r < 70; ++r) t.heights(40, r) = std::numeric_limits<float>::quiet_NaN();
+  HorizonParams p;
+  p.directions = 24;
+  p.curvature = "on";
+  p.lower = true;
+  p.samples = 8;
+  const HorizonField whole = run(t, Window::whole(t), "sweep", p);
+  for (const Window w : {Window{60, 50, 37, 29}, Window{0, 0, 161, 1}, Window{140, 100, 21, 41}}) {
+    const HorizonField f = run(t, w, "sweep", p);
+    for (int r = 0; r < w.rows; ++r) {
+      for (int c = 0; c < w.cols; ++c) {
+        for (int k = 0; k < p.directions; ++k) {
+          const std::size_t a = f.cell(c, r), b = whole.cell(w.col0 + c, w.row0 + r);
+          if (std::isnan(whole.upper_at(b, k))) {
+            ASSERT_TRUE(std::isnan(f.upper_at(a, k)));
+            continue;
+          }
+          ASSERT_EQ(f.upper_at(a, k), whole.upper_at(b, k)) << c << "," << r << " direction " << k;
+          ASSERT_EQ(f.lower_at(a, k), whole.lower_at(b, k)) << c << "," << r << " direction " << k;
+        }
+      }
+    }
+  }
+}
