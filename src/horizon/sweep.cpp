@@ -17,10 +17,10 @@
 // With a radius, no hulls: every crossing within it along each cell's own ray (a vectorised march).
 //
 // Memory layout, the cost that matters: lines are walked in bands of kBand neighbouring lines
-// from the far end to the near end. A band's hulls share one arena and its cells, near-field reads
-// and line samples all lie in a strip kBand + 1 cells wide, so the whole walk stays in the
-// caches. Walking every line of the raster one row at a time instead loaded each line's hull from
-// memory at every row (a cache miss per cell and direction: 4x slower at 4000 x 4000).
+// from the far end to the near end. A band's hulls share one arena and its cells and line samples
+// lie in a strip kBand + 1 cells wide (near-field reads reach near_steps |k| cells beyond), so the
+// whole walk stays in the caches. Walking every line of the raster one row at a time instead loaded each line's hull
+// from memory at every row (a cache miss per cell and direction: 4x slower at 4000 x 4000).
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -266,8 +266,8 @@ void near_field(const SweepGeometry& g, const std::vector<NearCrossing>& crossin
     for (int j = 0; j < 4; ++j) load8(zc[j], zrow + m + 8 * j), top[j] = Floats8{} + kNone;
     for (std::size_t i = 0; i < count; ++i) {
       const NearCrossing& x = crossings[i];
-      const float* z0 = g.row(major + g.toward * x.ahead0) + x.col0 + m;
-      const float* z1 = g.row(major + g.toward * x.ahead1) + x.col1 + m;
+      const float* z0 = g.row(major + g.toward * x.ahead0) + (x.col0 + m);  // in the row: m >= -col0
+      const float* z1 = g.row(major + g.toward * x.ahead1) + (x.col1 + m);
       const float w = x.w, scale = x.scale, drop = x.drop;
 #pragma GCC unroll 4
       for (int j = 0; j < 4; ++j) {
@@ -404,7 +404,7 @@ class DirectionSweep {
     last_step_ = wa_ < wb_ ? std::max(g.step_at(wa_), g.step_at(wb_ - 1)) : -1;
     // Hull points are at least far_gap ahead of any cell that queries them (the nearest is the
     // minor crossing between near_steps and near_steps + 1 steps ahead); where a sheared frame
-    // makes that bound useless (far_gap <= 0), the far field is never skipped.
+    // makes that bound useless (far_gap <= 0), no far-field search is skipped.
     same_ = 1e-9 * g.t_step;
     far_gap_ = std::max(0.0, near_steps * g.t_step - std::abs(g.t_minor));
     inv_far_gap_ = far_gap_ > 0.0 ? 1.0 / far_gap_ : kInf;
@@ -456,12 +456,12 @@ class DirectionSweep {
     const double base = std::floor(s.shift), fx = s.shift - base;
     const long i0 = m0 + static_cast<long>(base);
     const int ra = clamp_line(-i0), rb = clamp_line(g.minor_n - (fx > 0.0 ? 1 : 0) - i0);
-    const float* zr = g.row(s.major) + i0;
+    const float* zr = g.row(s.major);  // indexed from the row's start: i0 may be negative
     const double t0 = s.major * g_.t_major + (static_cast<double>(i0) + fx) * g_.t_minor;
     if (fx > 0.0) {
-      for (int l = ra; l < rb; ++l) out.row_z[l] = zr[l] + fx * (static_cast<double>(zr[l + 1]) - zr[l]);
+      for (int l = ra; l < rb; ++l) out.row_z[l] = zr[i0 + l] + fx * (static_cast<double>(zr[i0 + l + 1]) - zr[i0 + l]);
     } else {
-      for (int l = ra; l < rb; ++l) out.row_z[l] = zr[l];
+      for (int l = ra; l < rb; ++l) out.row_z[l] = zr[i0 + l];
     }
     for (int l = ra; l < rb; ++l) fold(t0 + l * g_.t_minor, out.row_t[l], out.row_z[l]);
     // Crossings of a minor grid line, linear across the two rows: line m0 + l at cell x0 + l.
@@ -470,11 +470,12 @@ class DirectionSweep {
     if (next && next->crossing) {
       const long x0 = m0 + next->cross_at;
       ca = clamp_line(-x0), cb = clamp_line(g.minor_n - x0);
-      const float* z0 = g.row(next->major) + x0;
-      const float* z1 = g.row(next->major + g.toward) + x0;
+      const float* z0 = g.row(next->major);
+      const float* z1 = g.row(next->major + g.toward);
       const double lambda = next->lambda;
       const double tc = (next->major + g.toward * lambda) * g_.t_major + static_cast<double>(x0) * g_.t_minor;
-      for (int l = ca; l < cb; ++l) out.cross_z[l] = z0[l] + lambda * (static_cast<double>(z1[l]) - z0[l]);
+      for (int l = ca; l < cb; ++l)
+        out.cross_z[l] = z0[x0 + l] + lambda * (static_cast<double>(z1[x0 + l]) - z0[x0 + l]);
       for (int l = ca; l < cb; ++l) fold(tc + l * g_.t_minor, out.cross_t[l], out.cross_z[l]);
     }
     // NaN heights (nodata) never occlude.
@@ -491,8 +492,9 @@ class DirectionSweep {
   }
 
   // Beyond the near field each cell, at its own height, takes its tangent to the hulls of the two
-  // lines beside it, the slopes interpolated by its offset, unless the hulls' highest points
-  // cannot beat its near field. Slopes, not angles, are interpolated: one arctangent per cell.
+  // lines beside it, the slopes interpolated by its offset, unless a bound (the hulls' highest
+  // points, or StripBound) shows that they cannot beat its near field. Slopes, not angles, are
+  // interpolated: one arctangent per cell.
   void far_field(long m0, int step, const StepLines& here, int a, int b, LineHull* hulls, StripBound* strips,
                  float* best) const {
     const float* zrow = g_.row(here.major);
@@ -510,10 +512,12 @@ class DirectionSweep {
       const double near_folded = near - 2.0 * c_ * t;  // in the hulls' folded heights
       StripBound& previous = strips[m - m0];
       // The far slope of a line is at most its highest point over the smallest gap; or, from the
-      // strip's previous cell, see StripBound.
-      const double rise = std::max(h0.top, h1.top) - p.z;
-      bool hidden = early_exit_ && near_folded >= (rise > 0.0 ? rise * inv_far_gap_ : 0.0);
-      if (early_exit_ && !hidden && previous.step == step - 1) {
+      // strip's previous cell, see StripBound. Both need every hull point ahead (far_gap_ > 0).
+      // With no offset (fu == 0: along axes and diagonals) only the first line counts.
+      const bool skips = early_exit_ && far_gap_ > 0.0;
+      const double rise = std::max(h0.top, fu > 0.0 ? h1.top : -kInf) - p.z;
+      bool hidden = skips && near_folded >= (rise > 0.0 ? rise * inv_far_gap_ : 0.0);
+      if (skips && !hidden && previous.step == step - 1) {
         const double dt = previous.t - t;
         auto beaten = [&](const LineHull& h, double bound) {
           auto below = [&](const HullPoint& q) { return q.z - p.z <= near_folded * (q.t - t); };
@@ -521,15 +525,16 @@ class DirectionSweep {
         };
         // Old points are at least far_gap_ from the previous cell: their slopes from here are at
         // most (bound far_gap + rise) / (far_gap + dt), or the bound itself, farther away.
-        const double bound = std::max(previous.slope[0], previous.slope[1]);
+        const double bound = std::max(previous.slope[0], fu > 0.0 ? previous.slope[1] : -kInf);
         hidden = dt > 0.0 && bound * far_gap_ + (previous.z - p.z) <= near_folded * (far_gap_ + dt) &&
-                 beaten(h0, previous.slope[0]) && beaten(h1, previous.slope[1]);
+                 beaten(h0, previous.slope[0]) && (fu == 0.0 || beaten(h1, previous.slope[1]));
       }
       previous.step = step;
       previous.t = t;
       previous.z = p.z;
       if (hidden) {
-        previous.slope[0] = previous.slope[1] = near_folded;
+        previous.slope[0] = near_folded;
+        previous.slope[1] = fu > 0.0 ? near_folded : kInf;  // the second line was not bounded
         continue;
       }
       // Slopes are interpolated in folded heights: the weights sum to one wherever both lines
@@ -561,8 +566,7 @@ class DirectionSweep {
 };
 
 // One direction over the whole buffer; writes the horizon angle (or the lowest angle when
-// `negate`) of the window's cells into `plane`, window-sized and row-major (nodata cells are left
-// alone).
+// `negate`) of the window's cells into `plane`, window-sized and row-major (NaN on nodata cells).
 //
 // Parallel lines one cell apart cover the raster, sampled where they cross grid lines (each major
 // step, read linearly between neighbouring cell centres, and each minor grid line between steps,
