@@ -10,6 +10,13 @@ namespace {
 
 Terrain small_city() { return rasterize(synthetic_city(3), 161, 141, local_grid(161, 141, 1.0)); }
 
+// The same with a short column of nodata cells (they give nodata and never occlude).
+Terrain small_city_with_nodata() {
+  Terrain t = small_city();
+  for (int r = 60; r < 70; ++r) t.heights(40, r) = std::numeric_limits<float>::quiet_NaN();
+  return t;
+}
+
 HorizonField run(const Terrain& t, const Window& w, const std::string& method, HorizonParams p) {
   HorizonField f;
   ProgressCounter progress;
@@ -197,8 +204,7 @@ TEST(SweepMethod, CurvatureLowersDistantHorizonsByTheExpectedDrop) {
 // With a radius the sweep reads every row and column crossing within it, as the march does: the
 // same horizons up to float rounding, on a city with nodata holes, off-axis directions included.
 TEST(SweepWithRadius, MatchesTheMarchWithinTheRadius) {
-  Terrain t = small_city();
-  for (int r = 60; r < 70; ++r) t.heights(40, r) = std::numeric_limits<float>::quiet_NaN();
+  const Terrain t = small_city_with_nodata();
   HorizonParams p;
   p.directions = 24;
   p.radius = 30.5;
@@ -236,8 +242,7 @@ TEST(SweepWithRadius, MatchesTheMarchWithinTheRadius) {
 // single exact near step the sweep's far field (hull, tangent search from the copies, the hint and
 // the gallop) must give the march's horizons over the whole raster.
 TEST(SweepHulls, AlongAxesTheFarFieldEqualsTheMarch) {
-  Terrain t = small_city();
-  for (int r = 60; r < 70; ++r) t.heights(40, r) = std::numeric_limits<float>::quiet_NaN();
+  const Terrain t = small_city_with_nodata();
   HorizonParams p;
   p.directions = 4;
   p.curvature = "off";
@@ -264,11 +269,10 @@ TEST(SweepHulls, AlongAxesTheFarFieldEqualsTheMarch) {
 // with nodata holes, the lowest angle (negated heights), Earth curvature folded into the hulls (it
 // makes flat ground a dome whose every sample is a hull point) and few or many exact near steps.
 TEST(SweepHulls, SkippedSearchesChangeNothing) {
-  Terrain t = small_city();
+  Terrain t = small_city_with_nodata();
   for (int r = 30; r < 60; ++r) {
     for (int c = 90; c < 130; ++c) t.heights(c, r) = std::numeric_limits<float>::quiet_NaN();
   }
-  for (int r = 60; r < 70; ++r) t.heights(40, r) = std::numeric_limits<float>::quiet_NaN();
   for (const char* curvature : {"off", "on"}) {
     for (const int near : {1, 8, 64}) {
       HorizonParams p;
@@ -296,8 +300,7 @@ TEST(SweepHulls, SkippedSearchesChangeNothing) {
 // walks only the bands and steps that hold the window's cells, and its skip bounds and tangent
 // hints start afresh there. Off-axis directions, nodata, the lowest angle and curvature included.
 TEST(SweepHulls, AWindowGetsTheWholeRastersHorizons) {
-  Terrain t = small_city();
-  for (int r = 60; r < 70; ++r) t.heights(40, r) = std::numeric_limits<float>::quiet_NaN();
+  const Terrain t = small_city_with_nodata();
   HorizonParams p;
   p.directions = 24;
   p.curvature = "on";
