@@ -29,7 +29,7 @@ struct HorizonParams {
 
 // Horizons of a window of cells, one plane (window-sized, row-major) per direction: a sweep
 // writes a whole direction at a time, and interleaving directions per cell made every one of its
-// writes a cache-line read and write (a fifth of the sweep's time at 4000 x 4000).
+// writes a cache-line read and write.
 struct HorizonField {
   int cols = 0, rows = 0, directions = 0;
   std::vector<float> upper;     // radians, [direction][cell]; NaN on nodata cells

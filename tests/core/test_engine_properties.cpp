@@ -1,5 +1,7 @@
 // Properties every method must keep: tiles equal a whole run, early exit changes nothing,
 // nodata never occludes, sampled agrees with march on a city.
+#include <algorithm>
+
 #include "skyview/error.h"
 #include "test_support.h"
 
@@ -15,6 +17,40 @@ Terrain small_city_with_nodata() {
   Terrain t = small_city();
   for (int r = 60; r < 70; ++r) t.heights(40, r) = std::numeric_limits<float>::quiet_NaN();
   return t;
+}
+
+// A 40 x 30 block of nodata: blocks of the max-height pyramid that hold only nodata, and some
+// that mix both.
+void punch_nodata_block(Terrain& t) {
+  for (int r = 30; r < 60; ++r) {
+    for (int c = 90; c < 130; ++c) t.heights(c, r) = std::numeric_limits<float>::quiet_NaN();
+  }
+}
+
+// The sweep's parameters in the tests below: the lowest angle too, so that negated heights are
+// covered.
+HorizonParams sweep_params(int directions, const char* curvature, int near_steps) {
+  HorizonParams p;
+  p.directions = directions;
+  p.curvature = curvature;
+  p.lower = true;
+  p.samples = near_steps;
+  return p;
+}
+
+// Bit for bit the same horizons (and lowest angles, where computed), NaN where the other has NaN.
+::testing::AssertionResult identical(const HorizonField& a, const HorizonField& b) {
+  if (a.upper.size() != b.upper.size() || a.lower.size() != b.lower.size())
+    return ::testing::AssertionFailure() << "sizes differ";
+  for (std::size_t i = 0; i < a.upper.size(); ++i) {
+    if (std::isnan(b.upper[i]) != std::isnan(a.upper[i])) return ::testing::AssertionFailure() << "NaN at " << i;
+    if (std::isnan(b.upper[i])) continue;
+    if (a.upper[i] != b.upper[i])
+      return ::testing::AssertionFailure() << "upper " << a.upper[i] << " != " << b.upper[i] << " at " << i;
+    if (!a.lower.empty() && a.lower[i] != b.lower[i])
+      return ::testing::AssertionFailure() << "lower " << a.lower[i] << " != " << b.lower[i] << " at " << i;
+  }
+  return ::testing::AssertionSuccess();
 }
 
 HorizonField run(const Terrain& t, const Window& w, const std::string& method, HorizonParams p) {
@@ -51,9 +87,7 @@ TEST_P(EngineProperty, EarlyExitGivesBitIdenticalResults) {
   // With and without the lowest angle (blocks are skipped only when both bounds allow it then).
   // Nodata holes make blocks of nodata and blocks that mix both.
   Terrain t = small_city();
-  for (int r = 30; r < 60; ++r) {
-    for (int c = 90; c < 130; ++c) t.heights(c, r) = std::numeric_limits<float>::quiet_NaN();
-  }
+  punch_nodata_block(t);
   for (const bool lower : {true, false}) {
     HorizonParams p;
     p.radius = 200.0;
@@ -61,19 +95,8 @@ TEST_P(EngineProperty, EarlyExitGivesBitIdenticalResults) {
     const HorizonField fast = run(t, Window::whole(t), GetParam(), p);
     p.early_exit = false;
     const HorizonField slow = run(t, Window::whole(t), GetParam(), p);
-    ASSERT_EQ(fast.upper.size(), slow.upper.size());
-    std::size_t open = 0;
-    for (std::size_t i = 0; i < fast.upper.size(); ++i) {
-      if (std::isnan(slow.upper[i])) {
-        ASSERT_TRUE(std::isnan(fast.upper[i])) << i;
-        continue;
-      }
-      ASSERT_EQ(fast.upper[i], slow.upper[i]) << i << (lower ? " with" : " without") << " the lowest angle";
-      if (lower) {
-        ASSERT_EQ(fast.lower[i], slow.lower[i]) << i;
-      }
-      open += slow.upper[i] == 0.0f;
-    }
+    ASSERT_TRUE(identical(fast, slow)) << (lower ? "with" : "without") << " the lowest angle";
+    const auto open = std::count(slow.upper.begin(), slow.upper.end(), 0.0f);
     EXPECT_LT(open, fast.upper.size() / 2) << "the test needs occluded directions to mean anything";
   }
 }
@@ -243,11 +266,7 @@ TEST(SweepWithRadius, MatchesTheMarchWithinTheRadius) {
 // the gallop) must give the march's horizons over the whole raster.
 TEST(SweepHulls, AlongAxesTheFarFieldEqualsTheMarch) {
   const Terrain t = small_city_with_nodata();
-  HorizonParams p;
-  p.directions = 4;
-  p.curvature = "off";
-  p.lower = true;
-  p.samples = 1;
+  HorizonParams p = sweep_params(4, "off", 1);
   const HorizonField sweep = run(t, Window::whole(t), "sweep", p);
   p.radius = 1000.0;
   p.samples = 0;
@@ -270,28 +289,14 @@ TEST(SweepHulls, AlongAxesTheFarFieldEqualsTheMarch) {
 // makes flat ground a dome whose every sample is a hull point) and few or many exact near steps.
 TEST(SweepHulls, SkippedSearchesChangeNothing) {
   Terrain t = small_city_with_nodata();
-  for (int r = 30; r < 60; ++r) {
-    for (int c = 90; c < 130; ++c) t.heights(c, r) = std::numeric_limits<float>::quiet_NaN();
-  }
+  punch_nodata_block(t);
   for (const char* curvature : {"off", "on"}) {
     for (const int near : {1, 8, 64}) {
-      HorizonParams p;
-      p.directions = 24;
-      p.curvature = curvature;
-      p.lower = true;
-      p.samples = near;
+      HorizonParams p = sweep_params(24, curvature, near);
       const HorizonField fast = run(t, Window::whole(t), "sweep", p);
       p.early_exit = false;
       const HorizonField slow = run(t, Window::whole(t), "sweep", p);
-      ASSERT_EQ(fast.upper.size(), slow.upper.size());
-      for (std::size_t i = 0; i < fast.upper.size(); ++i) {
-        if (std::isnan(slow.upper[i])) {
-          ASSERT_TRUE(std::isnan(fast.upper[i])) << i;
-          continue;
-        }
-        ASSERT_EQ(fast.upper[i], slow.upper[i]) << i << " curvature " << curvature << " near " << near;
-        ASSERT_EQ(fast.lower[i], slow.lower[i]) << i << " curvature " << curvature << " near " << near;
-      }
+      ASSERT_TRUE(identical(fast, slow)) << "curvature " << curvature << ", " << near << " near steps";
     }
   }
 }
@@ -301,11 +306,7 @@ TEST(SweepHulls, SkippedSearchesChangeNothing) {
 // hints start afresh there. Off-axis directions, nodata, the lowest angle and curvature included.
 TEST(SweepHulls, AWindowGetsTheWholeRastersHorizons) {
   const Terrain t = small_city_with_nodata();
-  HorizonParams p;
-  p.directions = 24;
-  p.curvature = "on";
-  p.lower = true;
-  p.samples = 8;
+  const HorizonParams p = sweep_params(24, "on", 8);
   const HorizonField whole = run(t, Window::whole(t), "sweep", p);
   for (const Window w : {Window{60, 50, 37, 29}, Window{0, 0, 161, 1}, Window{140, 100, 21, 41}}) {
     const HorizonField f = run(t, w, "sweep", p);
