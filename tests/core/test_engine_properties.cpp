@@ -325,3 +325,33 @@ TEST(SweepHulls, AWindowGetsTheWholeRastersHorizons) {
     }
   }
 }
+
+// The lowest angle is the horizon of the terrain turned upside down (without curvature, which
+// does not turn over). The sweep finds both in one walk, sharing line samples and the near
+// field's crossings (the lowest is minus the smallest slope); this holds it to a walk of its own
+// over negated heights, bit for bit, with and without a radius, nodata included.
+TEST(SweepHulls, TheLowestAngleIsTheHorizonOfTheNegatedTerrain) {
+  Terrain t = small_city_with_nodata();
+  punch_nodata_block(t);
+  Terrain negated = t;
+  for (float& z : negated.heights.values()) z = -z;
+  for (const double radius : {0.0, 30.5}) {
+    for (const int near : {1, 64}) {
+      HorizonParams p = sweep_params(24, "off", near);
+      p.radius = radius;
+      const HorizonField both = run(t, Window::whole(t), "sweep", p);
+      p.lower = false;
+      const HorizonField flipped = run(negated, Window::whole(negated), "sweep", p);
+      std::size_t below = 0;
+      for (std::size_t i = 0; i < both.lower.size(); ++i) {
+        if (std::isnan(flipped.upper[i])) {
+          ASSERT_TRUE(std::isnan(both.lower[i])) << i;
+          continue;
+        }
+        ASSERT_EQ(both.lower[i], -flipped.upper[i]) << "radius " << radius << ", " << near << " near steps, at " << i;
+        below += both.lower[i] < -0.1f;
+      }
+      EXPECT_GT(below, both.lower.size() / 10) << "the test needs lowest angles well below the horizontal";
+    }
+  }
+}
