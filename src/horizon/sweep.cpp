@@ -242,18 +242,20 @@ using Floats8 = float __attribute__((vector_size(32)));
 inline void load8(Floats8& v, const float* p) { std::memcpy(&v, p, sizeof v); }
 
 // Near field of the cells [a, b) of the row at `major`: the highest slope of each cell's own ray
-// over the crossings, into best[a, b) (indexed by minor). NaN heights lose every comparison, so
-// nodata never occludes. Float slopes are good to 1e-7. Blocks of 32 cells that read every
-// crossing inside the raster keep their heights and slopes in registers over all crossings (a
-// crossing costs two loads and six operations per eight cells); the rest, near the raster's sides,
-// goes crossing by crossing. Compiled twice, for baseline x86-64 and for AVX2 (chosen at load time).
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
-__attribute__((target_clones("avx2", "default")))
-#endif
-void near_field(const SweepGeometry& g, const std::vector<NearCrossing>& crossings, int major, int a, int b,
-                float* best) {
+// over the crossings, into best[a, b) (indexed by minor), and with kLowest minus the lowest into
+// lowest[a, b): the lowest angle's slope, which negated heights would give bit for bit (float
+// rounding is symmetric), from the same loads. NaN heights lose every comparison, so nodata never
+// occludes. Float slopes are good to 1e-7. Blocks of 32 cells that read every crossing inside the
+// raster keep their heights and slopes in registers over all crossings (a crossing costs two loads
+// and six or seven operations per eight cells); the rest, near the raster's sides, goes crossing by
+// crossing. Inlined into near_field, which is compiled for baseline x86-64 and for AVX2.
+template <bool kLowest>
+__attribute__((always_inline)) inline void near_extremes(const SweepGeometry& g,
+                                                         const std::vector<NearCrossing>& crossings, int major, int a,
+                                                         int b, float* best, float* lowest) {
   constexpr float kNone = -std::numeric_limits<float>::infinity();
   std::fill(best + a, best + b, kNone);
+  if (kLowest) std::fill(lowest + a, lowest + b, -kNone);  // the smallest slope until negated below
   const float* zrow = g.row(major);
   // The crossings whose rows exist from this row (they come in order of distance), and the cells
   // that read all of them inside the row.
@@ -270,8 +272,12 @@ void near_field(const SweepGeometry& g, const std::vector<NearCrossing>& crossin
   const int blocks = all_hi > all_lo ? (all_hi - all_lo) / kBlock : 0;
   for (int block = 0; block < blocks; ++block) {
     const int m = all_lo + block * kBlock;
-    Floats8 zc[4], top[4];
-    for (int j = 0; j < 4; ++j) load8(zc[j], zrow + m + 8 * j), top[j] = Floats8{} + kNone;
+    Floats8 zc[4], top[4], bottom[4];
+    for (int j = 0; j < 4; ++j) {
+      load8(zc[j], zrow + m + 8 * j);
+      top[j] = Floats8{} + kNone;
+      bottom[j] = Floats8{} - kNone;
+    }
     for (std::size_t i = 0; i < count; ++i) {
       const NearCrossing& x = crossings[i];
       const float* z0 = g.row(major + g.toward * x.ahead0) + (x.col0 + m);  // in the row: m >= -col0
@@ -284,9 +290,14 @@ void near_field(const SweepGeometry& g, const std::vector<NearCrossing>& crossin
         load8(h1, z1 + 8 * j);
         const Floats8 v = (h0 + w * (h1 - h0) - zc[j]) * scale - drop;
         top[j] = v > top[j] ? v : top[j];
+        if (kLowest) bottom[j] = v < bottom[j] ? v : bottom[j];
       }
     }
     std::memcpy(best + m, top, sizeof top);
+    if (kLowest) {
+      for (int j = 0; j < 4; ++j) bottom[j] = -bottom[j];
+      std::memcpy(lowest + m, bottom, sizeof bottom);
+    }
   }
   // The cells left over: crossing by crossing, each within the cells that read it inside the row.
   auto by_crossing = [&](int lo, int hi) {
@@ -302,7 +313,11 @@ void near_field(const SweepGeometry& g, const std::vector<NearCrossing>& crossin
         const float zi = z0[m + c0] + w * (z1[m + c1] - z0[m + c0]);
         const float v = (zi - zrow[m]) * scale - drop;
         best[m] = v > best[m] ? v : best[m];
+        if (kLowest) lowest[m] = v < lowest[m] ? v : lowest[m];
       }
+    }
+    if (kLowest) {
+      for (int m = lo; m < hi; ++m) lowest[m] = -lowest[m];
     }
   };
   if (blocks > 0) {
@@ -311,6 +326,19 @@ void near_field(const SweepGeometry& g, const std::vector<NearCrossing>& crossin
   } else {
     by_crossing(a, b);
   }
+}
+
+// The near field of near_extremes, for the horizon alone or (`lowest` not null) with the lowest
+// angle.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void near_field(const SweepGeometry& g, const std::vector<NearCrossing>& crossings, int major, int a, int b,
+                float* best, float* lowest) {
+  if (lowest)
+    near_extremes<true>(g, crossings, major, a, b, best, lowest);
+  else
+    near_extremes<false>(g, crossings, major, a, b, best, lowest);
 }
 
 // Angles of the cells [a, b) of the row at `major` into the direction's plane of the field
@@ -389,9 +417,29 @@ struct StripBound {
 
 constexpr int kBand = 256;  // cells' strips per band; the band keeps kBand + 1 hulls
 
-// Scratch for one step's samples of a band's lines (row crossings and minor grid crossings).
+// Scratch for one step's samples of a band's lines (row crossings and minor grid crossings): the
+// heights as read, then as one walk's hulls hold them.
 struct BandSamples {
   double row_t[kBand + 1], row_z[kBand + 1], cross_t[kBand + 1], cross_z[kBand + 1];
+  double row_f[kBand + 1], cross_f[kBand + 1];
+};
+
+// One of the walks a band makes at once over the same lines: the horizon (heights as they are) or
+// the lowest angle (heights negated, so the lowest terrain is the highest). Each keeps its own
+// hulls, strip bounds, slopes and output plane; they share the line samples and the near field's
+// crossings, which cost half of a walk's time.
+struct Walk {
+  double sign = 1, c = 0;  // heights' sign, and the curvature coefficient in that sign
+  float* plane = nullptr;  // the direction's plane of the field, window-sized
+  // A height at position t along the ray, negated for the lowest angle and folded for Earth
+  // curvature (see the top of this file): what the hulls hold.
+  double folded(double t, double z) const { return sign * z - c * t * t; }
+};
+
+// A walk's state in the band being walked.
+struct WalkState {
+  LineHull* hulls = nullptr;  // kBand + 1, in their own arena
+  float* best = nullptr;      // row-sized scratch of slopes
 };
 
 // One direction, shared by its bands. Cells between lines m and m + 1 (one per step: the strip is a
@@ -399,12 +447,16 @@ struct BandSamples {
 // strips together so that the near field still runs as a vector loop over kBand cells of a row.
 class DirectionSweep {
  public:
+  static constexpr int kMaxWalks = 2;
+
+  // `lower_plane` null: the horizon only.
   DirectionSweep(const SweepGeometry& g, const Window& window, int near_steps, bool early_exit, double curvature,
-                 bool negate, float* plane)
-      : g_(g), window_(window), near_steps_(near_steps), early_exit_(early_exit), plane_(plane) {
-    sign_ = negate ? -1.0 : 1.0;
-    c_ = negate ? -curvature : curvature;
-    near_ = near_crossings(g, near_steps, kInf, c_, sign_);
+                 float* upper_plane, float* lower_plane)
+      : g_(g), window_(window), near_steps_(near_steps), early_exit_(early_exit) {
+    walks_[0] = {1.0, curvature, upper_plane};
+    walks_[1] = {-1.0, -curvature, lower_plane};
+    n_walks_ = lower_plane ? 2 : 1;
+    near_ = near_crossings(g, near_steps, kInf, curvature, 1.0);
     steps_ = step_lines(g);
     g.window_span(window, wa_, wb_, lo_, hi_);
     last_step_ = wa_ < wb_ ? std::max(g.step_at(wa_), g.step_at(wb_ - 1)) : -1;
@@ -416,6 +468,8 @@ class DirectionSweep {
     inv_far_gap_ = far_gap_ > 0.0 ? 1.0 / far_gap_ : kInf;
   }
 
+  int walks() const { return n_walks_; }
+
   // Lines holding the window's cells: the first band's first line and the number of bands.
   long first_line() const { return static_cast<long>(std::floor(lo_ - max_shift())) - 1; }
   long bands() const {
@@ -424,26 +478,30 @@ class DirectionSweep {
     return (last - first_line()) / kBand + 1;
   }
 
-  // The band of strips from line m0: hulls of its kBand + 1 lines (capacity two samples per step
-  // each) and a row-sized scratch of near-field slopes.
-  void run_band(long m0, LineHull* hulls, float* best) const {
+  // The band of strips from line m0, with each walk's hulls (kBand + 1 lines, capacity two samples
+  // per step each) and row-sized scratch of slopes.
+  void run_band(long m0, const WalkState* state) const {
     const SweepGeometry& g = g_;
-    for (int l = 0; l <= kBand; ++l) hulls[l].clear();
-    StripBound strips[kBand];
+    for (int w = 0; w < n_walks_; ++w) {
+      for (int l = 0; l <= kBand; ++l) state[w].hulls[l].clear();
+    }
+    StripBound strips[kMaxWalks][kBand];
     BandSamples samples;
     for (int step = 0; step <= last_step_; ++step) {
       // Samples from more than near_steps steps back join their line's hull, far to near: the
       // row crossing, then the minor grid line crossed just after it.
-      if (step > near_steps_) add_samples(m0, step - near_steps_ - 1, hulls, samples);
+      if (step > near_steps_) add_samples(m0, step - near_steps_ - 1, state, samples);
       const StepLines& here = steps_[static_cast<std::size_t>(step)];
       const int major = here.major;
       if (major < wa_ || major >= wb_) continue;
       const int a = static_cast<int>(std::max<long>(lo_, first_cell(m0, here.shift)));
       const int b = static_cast<int>(std::min<long>(hi_, first_cell(m0 + kBand, here.shift)));
       if (a >= b) continue;
-      near_field(g, near_, major, a, b, best);
-      far_field(m0, step, here, a, b, hulls, strips, best);
-      write_angles(g, window_, major, a, b, best, sign_, plane_);
+      near_field(g, near_, major, a, b, state[0].best, n_walks_ > 1 ? state[1].best : nullptr);
+      for (int w = 0; w < n_walks_; ++w) {
+        far_field(walks_[w], m0, step, here, a, b, state[w], strips[w]);
+        write_angles(g, window_, major, a, b, state[w].best, walks_[w].sign, walks_[w].plane);
+      }
     }
   }
 
@@ -453,8 +511,9 @@ class DirectionSweep {
 
   // This step's samples of the band's lines join their hulls, far to near on each line: the row
   // crossing, then the minor grid line crossed just after it. Every line sits at the same fraction
-  // of a cell, so the heights come from vector loops over the lines; only the pushes go line by line.
-  void add_samples(long m0, int step, LineHull* hulls, BandSamples& out) const {
+  // of a cell, so the heights come from vector loops over the lines (once for all walks); only the
+  // pushes go line by line.
+  void add_samples(long m0, int step, const WalkState* state, BandSamples& out) const {
     const SweepGeometry& g = g_;
     const StepLines& s = steps_[static_cast<std::size_t>(step)];
     auto clamp_line = [](long l) { return static_cast<int>(std::clamp<long>(l, 0, kBand + 1)); };
@@ -469,10 +528,7 @@ class DirectionSweep {
     } else {
       for (int l = ra; l < rb; ++l) out.row_z[l] = zr[i0 + l];
     }
-    for (int l = ra; l < rb; ++l) {
-      out.row_t[l] = t0 + l * g_.t_minor;
-      out.row_z[l] = folded(out.row_t[l], out.row_z[l]);
-    }
+    for (int l = ra; l < rb; ++l) out.row_t[l] = t0 + l * g_.t_minor;
     // Crossings of a minor grid line, linear across the two rows: line m0 + l at cell x0 + l.
     const StepLines* next = step + 1 < g.major_n ? &steps_[static_cast<std::size_t>(step) + 1] : nullptr;
     int ca = 0, cb = 0;
@@ -485,29 +541,31 @@ class DirectionSweep {
       const double tc = (next->major + g.toward * lambda) * g_.t_major + static_cast<double>(x0) * g_.t_minor;
       for (int l = ca; l < cb; ++l)
         out.cross_z[l] = z0[x0 + l] + lambda * (static_cast<double>(z1[x0 + l]) - z0[x0 + l]);
-      for (int l = ca; l < cb; ++l) {
-        out.cross_t[l] = tc + l * g_.t_minor;
-        out.cross_z[l] = folded(out.cross_t[l], out.cross_z[l]);
+      for (int l = ca; l < cb; ++l) out.cross_t[l] = tc + l * g_.t_minor;
+    }
+    for (int w = 0; w < n_walks_; ++w) {
+      const Walk& walk = walks_[w];
+      for (int l = ra; l < rb; ++l) out.row_f[l] = walk.folded(out.row_t[l], out.row_z[l]);
+      for (int l = ca; l < cb; ++l) out.cross_f[l] = walk.folded(out.cross_t[l], out.cross_z[l]);
+      // NaN heights (nodata) never occlude.
+      LineHull* hulls = state[w].hulls;
+      for (int l = std::min(ra, ca); l < std::max(rb, cb); ++l) {
+        if (l >= ra && l < rb && !std::isnan(out.row_f[l])) hulls[l].push({out.row_t[l], out.row_f[l]}, same_);
+        if (l >= ca && l < cb && !std::isnan(out.cross_f[l])) hulls[l].push({out.cross_t[l], out.cross_f[l]}, same_);
       }
     }
-    // NaN heights (nodata) never occlude.
-    for (int l = std::min(ra, ca); l < std::max(rb, cb); ++l) {
-      if (l >= ra && l < rb && !std::isnan(out.row_z[l])) hulls[l].push({out.row_t[l], out.row_z[l]}, same_);
-      if (l >= ca && l < cb && !std::isnan(out.cross_z[l])) hulls[l].push({out.cross_t[l], out.cross_z[l]}, same_);
-    }
   }
-
-  // A height at position t along the ray, negated for the lowest angle and folded for Earth
-  // curvature (see the top of this file): what the hulls hold.
-  double folded(double t, double z) const { return sign_ * z - c_ * t * t; }
 
   // Beyond the near field each cell, at its own height, takes its tangent to the hulls of the two
   // lines beside it, the slopes interpolated by its offset, unless a bound (the hulls' highest
   // points, or StripBound) shows that they cannot beat its near field. Slopes, not angles, are
   // interpolated: one arctangent per cell.
-  void far_field(long m0, int step, const StepLines& here, int a, int b, LineHull* hulls, StripBound* strips,
-                 float* best) const {
+  void far_field(const Walk& walk, long m0, int step, const StepLines& here, int a, int b, const WalkState& state,
+                 StripBound* strips) const {
     const float* zrow = g_.row(here.major);
+    LineHull* hulls = state.hulls;
+    float* best = state.best;
+    const double c = walk.c;
     for (int minor = a; minor < b; ++minor) {
       const float zc = zrow[minor];
       if (std::isnan(zc)) continue;
@@ -515,11 +573,11 @@ class DirectionSweep {
       const double u = minor - here.shift;
       const long m = static_cast<long>(std::floor(u));
       const double fu = u - static_cast<double>(m);
-      const HullPoint p{t, folded(t, zc)};
+      const HullPoint p{t, walk.folded(t, zc)};
       LineHull& h0 = hulls[m - m0];
       LineHull& h1 = hulls[m - m0 + 1];
       const double near = best[minor];
-      const double near_folded = near - 2.0 * c_ * t;  // in the hulls' folded heights
+      const double near_folded = near - 2.0 * c * t;  // in the hulls' folded heights
       StripBound& previous = strips[m - m0];
       // The far slope of a line is at most its highest point over the smallest gap; or, from the
       // strip's previous cell, see StripBound. Both need every hull point ahead (far_gap_ > 0).
@@ -559,7 +617,7 @@ class DirectionSweep {
         previous.slope[1] = h1.n > 0 ? h1.tangent_slope(p, 1) : -kInf;
         if (h1.n > 0) far += fu * previous.slope[1], weight += fu;
       }
-      if (weight > 0.0) best[minor] = static_cast<float>(std::max(near, far / weight + 2.0 * c_ * t));
+      if (weight > 0.0) best[minor] = static_cast<float>(std::max(near, far / weight + 2.0 * c * t));
     }
   }
 
@@ -567,16 +625,18 @@ class DirectionSweep {
   const Window& window_;
   int near_steps_;
   bool early_exit_;  // skip searches that cannot change the horizon (off: for tests)
-  float* plane_;
-  double sign_ = 1, c_ = 0, far_gap_ = 0, inv_far_gap_ = kInf;
+  Walk walks_[kMaxWalks];
+  int n_walks_ = 1;
+  double far_gap_ = 0, inv_far_gap_ = kInf;
   double same_ = 0;  // samples closer than this along a line are one (see LineHull::push)
   std::vector<NearCrossing> near_;
   std::vector<StepLines> steps_;
   int wa_ = 0, wb_ = 0, lo_ = 0, hi_ = 0, last_step_ = -1;
 };
 
-// One direction over the whole buffer; writes the horizon angle (or the lowest angle when
-// `negate`) of the window's cells into `plane`, window-sized and row-major (NaN on nodata cells).
+// One direction over the whole buffer; writes the horizon angles of the window's cells into
+// `upper_plane` and, unless it is null, their lowest angles into `lower_plane` (both window-sized
+// and row-major, NaN on nodata cells).
 //
 // Parallel lines one cell apart cover the raster, sampled where they cross grid lines (each major
 // step, read linearly between neighbouring cell centres, and each minor grid line between steps,
@@ -588,28 +648,34 @@ class DirectionSweep {
 // 64 steps cost about 15% more time than 8 at 4000 x 4000; they bring the city sample's p99 from
 // 0.009 to 0.002. With a radius there are no hulls: every crossing within it is near.
 void sweep_direction(const Terrain& terrain, const float* transposed, const Window& window, double azimuth,
-                     double curvature, bool negate, int near_steps, bool early_exit, double radius, float* plane) {
+                     double curvature, int near_steps, bool early_exit, double radius, float* upper_plane,
+                     float* lower_plane) {
   const SweepGeometry g = make_geometry(terrain, transposed, azimuth);
-  std::vector<float> best(static_cast<std::size_t>(g.minor_n));
+  const std::size_t row = static_cast<std::size_t>(g.minor_n);
+  std::vector<float> best(row * DirectionSweep::kMaxWalks);
+  float* lowest = lower_plane ? best.data() + row : nullptr;
   if (std::isfinite(radius)) {
     const int steps = static_cast<int>(std::min<double>(g.major_n, std::floor(radius / g.t_step) + 1));
-    const double sign = negate ? -1.0 : 1.0;
-    const auto near = near_crossings(g, steps, radius, negate ? -curvature : curvature, sign);
+    const auto near = near_crossings(g, steps, radius, curvature, 1.0);
     int wa, wb, lo, hi;
     g.window_span(window, wa, wb, lo, hi);
     for (int major = wa; major < wb && lo < hi; ++major) {
-      near_field(g, near, major, lo, hi, best.data());
-      write_angles(g, window, major, lo, hi, best.data(), sign, plane);
+      near_field(g, near, major, lo, hi, best.data(), lowest);
+      write_angles(g, window, major, lo, hi, best.data(), 1.0, upper_plane);
+      if (lowest) write_angles(g, window, major, lo, hi, lowest, -1.0, lower_plane);
     }
     return;
   }
-  const DirectionSweep sweep(g, window, near_steps, early_exit, curvature, negate, plane);
+  const DirectionSweep sweep(g, window, near_steps, early_exit, curvature, upper_plane, lower_plane);
   const std::size_t capacity = 2 * static_cast<std::size_t>(g.major_n) + 2;
-  std::unique_ptr<HullPoint[]> arena(new HullPoint[capacity * (kBand + 1)]);
-  std::vector<LineHull> hulls(kBand + 1);
-  for (int l = 0; l <= kBand; ++l) hulls[static_cast<std::size_t>(l)].points = arena.get() + capacity * l;
+  const int walks = sweep.walks();
+  std::unique_ptr<HullPoint[]> arena(new HullPoint[capacity * (kBand + 1) * walks]);
+  std::vector<LineHull> hulls(static_cast<std::size_t>(kBand + 1) * walks);
+  for (std::size_t l = 0; l < hulls.size(); ++l) hulls[l].points = arena.get() + capacity * l;
+  WalkState state[DirectionSweep::kMaxWalks];
+  for (int w = 0; w < walks; ++w) state[w] = {hulls.data() + (kBand + 1) * w, best.data() + row * w};
   const long first = sweep.first_line(), bands = sweep.bands();
-  for (long band = 0; band < bands; ++band) sweep.run_band(first + band * kBand, hulls.data(), best.data());
+  for (long band = 0; band < bands; ++band) sweep.run_band(first + band * kBand, state);
 }
 
 class SweepEngine final : public HorizonEngine {
@@ -639,20 +705,16 @@ class SweepEngine final : public HorizonEngine {
     const Jacobian j = terrain.frame.at(terrain.origin_col, terrain.origin_row);
     const double extent = std::hypot(terrain.width() * std::hypot(j.a, j.c), terrain.height() * std::hypot(j.b, j.d));
     const double c = curvature_coefficient(p_, p_.radius > 0 ? p_.radius : extent, terrain.frame.earth_radius());
-    const int passes = p_.lower ? 2 : 1;
-    const std::uint64_t per_pass = static_cast<std::uint64_t>(window.cells()) / std::max(1, p_.directions * passes);
+    const std::uint64_t per_direction = static_cast<std::uint64_t>(window.cells()) / std::max(1, p_.directions);
     const int W = terrain.width(), H = terrain.height();
     std::vector<float> transposed(static_cast<std::size_t>(W) * H);
     for (int r = 0; r < H; ++r) {
       for (int col = 0; col < W; ++col) transposed[static_cast<std::size_t>(col) * H + r] = terrain.heights(col, r);
     }
-    tbb::parallel_for(0, p_.directions * passes, [&](int task) {
-      const int k = task % p_.directions;
-      const bool negate = task >= p_.directions;
-      float* plane = negate ? out.lower_plane(k) : out.upper_plane(k);
-      sweep_direction(terrain, transposed.data(), window, sector_azimuth(k, p_.directions), c, negate, p_.samples,
-                      p_.early_exit, radius(), plane);
-      progress.advance(per_pass);
+    tbb::parallel_for(0, p_.directions, [&](int k) {
+      sweep_direction(terrain, transposed.data(), window, sector_azimuth(k, p_.directions), c, p_.samples,
+                      p_.early_exit, radius(), out.upper_plane(k), p_.lower ? out.lower_plane(k) : nullptr);
+      progress.advance(per_direction);
     });
   }
 
