@@ -371,6 +371,12 @@ void write_angles(const SweepGeometry& g, const Window& window, int major, int a
 struct StepLines {
   int major = 0;
   double shift = 0;  // line m sits at minor m + shift
+  // Cell i lies between lines i + cell_line and i + cell_line + 1, `offset` of a cell from the
+  // first: the same for every cell of the row (exact: -shift minus its floor has no rounding).
+  long cell_line = 0;
+  double offset = 0;
+  // The first cell whose strip starts at line m or later.
+  long first_cell(long m) const { return m - cell_line; }
   bool crossing = false;
   long cross_at = 0;  // line m crosses its minor grid line at minor m + cross_at
   double lambda = 0;  // ... this fraction of the step from this row towards the farther one
@@ -382,6 +388,8 @@ std::vector<StepLines> step_lines(const SweepGeometry& g) {
     StepLines& s = out[static_cast<std::size_t>(step)];
     s.major = g.major_at(step);
     s.shift = s.major * g.k;
+    s.cell_line = static_cast<long>(std::floor(-s.shift));
+    s.offset = -s.shift - std::floor(-s.shift);
     const double base = std::floor(s.shift), fs = s.shift - base;
     double q;
     s.crossing = step > 0 && crossing_between(fs, fs + g.k_step, q);
@@ -391,14 +399,6 @@ std::vector<StepLines> step_lines(const SweepGeometry& g) {
     }
   }
   return out;
-}
-
-// The first cell i of a row whose strip starts at line m or later (floor(i - shift) >= m).
-inline long first_cell(long m, double shift) {
-  long i = static_cast<long>(std::ceil(static_cast<double>(m) + shift));
-  while (std::floor(static_cast<double>(i - 1) - shift) >= static_cast<double>(m)) --i;
-  while (std::floor(static_cast<double>(i) - shift) < static_cast<double>(m)) ++i;
-  return i;
 }
 
 // What a strip's previous cell (one step ahead of the current one) proved about its two lines: an
@@ -494,8 +494,8 @@ class DirectionSweep {
       const StepLines& here = steps_[static_cast<std::size_t>(step)];
       const int major = here.major;
       if (major < wa_ || major >= wb_) continue;
-      const int a = static_cast<int>(std::max<long>(lo_, first_cell(m0, here.shift)));
-      const int b = static_cast<int>(std::min<long>(hi_, first_cell(m0 + kBand, here.shift)));
+      const int a = static_cast<int>(std::max<long>(lo_, here.first_cell(m0)));
+      const int b = static_cast<int>(std::min<long>(hi_, here.first_cell(m0 + kBand)));
       if (a >= b) continue;
       near_field(g, near_, major, a, b, state[0].best, n_walks_ > 1 ? state[1].best : nullptr);
       for (int w = 0; w < n_walks_; ++w) {
@@ -570,9 +570,8 @@ class DirectionSweep {
       const float zc = zrow[minor];
       if (std::isnan(zc)) continue;
       const double t = here.major * g_.t_major + minor * g_.t_minor;
-      const double u = minor - here.shift;
-      const long m = static_cast<long>(std::floor(u));
-      const double fu = u - static_cast<double>(m);
+      const long m = minor + here.cell_line;
+      const double fu = here.offset;
       const HullPoint p{t, walk.folded(t, zc)};
       LineHull& h0 = hulls[m - m0];
       LineHull& h1 = hulls[m - m0 + 1];
