@@ -1,6 +1,9 @@
 // Analytic cases with known sky-view factors, for every sampling-based method.
 #include <GeographicLib/Geodesic.hpp>
 
+#include <algorithm>
+#include <random>
+
 #include "test_support.h"
 
 using namespace skyview;
@@ -116,6 +119,45 @@ TEST(GroundFrame, PitInUtmAndInDegreesAtLatitude60GivesTheSameValues) {
   const CellResult a2 = run_cell(tu, n / 2 + 40, n / 2 - 25, "march", p);
   const CellResult b2 = run_cell(tg, n / 2 + 40, n / 2 - 25, "march", p);
   EXPECT_NEAR(a2.svf, b2.svf, 0.005);
+}
+
+// The per-sector sum of sky_view.h written out as it reads, with a cosine and an arctangent in
+// every sector: what svf_tilted computes with one sine and cosine per sector.
+double svf_tilted_as_written(const std::vector<float>& h, double rotation, double slope, double aspect) {
+  const int n = static_cast<int>(h.size());
+  const double delta = 2.0 * M_PI / n, sum_half = std::sin(0.5 * delta);
+  double sum = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const double cos_rel = std::cos(sector_azimuth(k, n) + rotation - aspect);
+    const double t = std::atan(-std::tan(slope) * cos_rel);
+    const double H = std::max({static_cast<double>(h[k]), t, 0.0});
+    sum += std::cos(slope) * std::cos(H) * std::cos(H) * delta / (2.0 * M_PI) +
+           std::sin(slope) * cos_rel * sum_half * (0.5 * M_PI - H - std::sin(H) * std::cos(H)) / M_PI;
+  }
+  return std::clamp(sum, 0.0, 1.0);
+}
+
+TEST(SkyViewFormulas, TiltedSurfaceMatchesTheFormulaAsWritten) {
+  // Horizons below and above the surface's own horizon, slopes up to 80 degrees, any aspect and
+  // rotation: the branch that takes the surface's horizon must pick exactly the sectors where it
+  // is the highest of the three.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int surface_wins = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const int n = 4 + trial % 61;
+    std::vector<float> h(n);
+    for (float& x : h) x = static_cast<float>((u(rng) * 1.4 - 0.5) * M_PI / 2);
+    const double slope = u(rng) * 80.0 * kDeg, aspect = u(rng) * 2 * M_PI, rotation = (u(rng) - 0.5) * 0.4;
+    for (int k = 0; k < n; ++k) {
+      surface_wins += std::atan(-std::tan(slope) * std::cos(sector_azimuth(k, n) + rotation - aspect)) >
+                      std::max(0.0, static_cast<double>(h[k]));
+    }
+    ASSERT_NEAR(svf_tilted(h.data(), n, rotation, slope, aspect), svf_tilted_as_written(h, rotation, slope, aspect),
+                1e-12)
+        << "trial " << trial;
+  }
+  EXPECT_GT(surface_wins, 5000) << "the test must cover sectors where the surface's own horizon is the highest";
 }
 
 TEST(SkyViewFormulas, TiltedSurfaceWithPlaneHorizonsConvergesToAnalytic) {
