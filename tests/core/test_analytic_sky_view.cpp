@@ -121,8 +121,9 @@ TEST(GroundFrame, PitInUtmAndInDegreesAtLatitude60GivesTheSameValues) {
   EXPECT_NEAR(a2.svf, b2.svf, 0.005);
 }
 
-// The per-sector sum of sky_view.h written out as it reads, with a cosine and an arctangent in
-// every sector: what svf_tilted computes with one sine and cosine per sector.
+// The per-sector sum of sky_view.h written out as it reads, with library sines, cosines and
+// arctangents in every sector: what svf_tilted computes with polynomials (fast_atan's error is
+// below 1e-11 rad, the sine's and cosine's below 1e-15).
 double svf_tilted_as_written(const std::vector<float>& h, double rotation, double slope, double aspect) {
   const int n = static_cast<int>(h.size());
   const double delta = 2.0 * M_PI / n, sum_half = std::sin(0.5 * delta);
@@ -154,7 +155,7 @@ TEST(SkyViewFormulas, TiltedSurfaceMatchesTheFormulaAsWritten) {
                       std::max(0.0, static_cast<double>(h[k]));
     }
     ASSERT_NEAR(svf_tilted(h.data(), n, rotation, slope, aspect), svf_tilted_as_written(h, rotation, slope, aspect),
-                1e-12)
+                1e-10)
         << "trial " << trial;
   }
   EXPECT_GT(surface_wins, 5000) << "the test must cover sectors where the surface's own horizon is the highest";
