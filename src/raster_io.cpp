@@ -5,6 +5,7 @@
 #include <cpl_string.h>
 #include <cpl_vsi.h>
 #include <gdal_priv.h>
+#include <tbb/global_control.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -172,6 +173,10 @@ void commit_dataset(GDALDataset* mem, const std::string& path, const std::string
     opts.SetNameValue("COMPRESS", "DEFLATE");
     opts.SetNameValue("PREDICTOR", mem->GetRasterBand(1)->GetRasterDataType() == GDT_Float32 ? "3" : "2");
     opts.SetNameValue("BIGTIFF", "IF_SAFER");
+    // Compress blocks on as many threads as the run may use (--threads): single-threaded DEFLATE
+    // was a tenth of skyview svf's wall time on a 2000 x 2000 raster with 2 cores.
+    const auto threads = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+    opts.SetNameValue("NUM_THREADS", std::to_string(threads).c_str());
   }
   for (const auto& kv : creation_options) {
     const auto eq = kv.find('=');
