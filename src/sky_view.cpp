@@ -1,5 +1,6 @@
 #include "skyview/sky_view.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "horizon/fast_atan.h"
+#include "skyview/error.h"
 
 namespace skyview {
 
@@ -66,9 +68,9 @@ struct SkySums {
   double svf[kChunk], visibility[kChunk], surface[kChunk];  // Σ sin² H0, Σ sin H0, Σ surface share
   double openness[kChunk], lowest[kChunk];                  // Σ (90° - h), Σ (90° + lowest angle)
 
-  void start(int i, double rotation, double slope, double aspect) {
-    cb[i] = std::cos(slope), sb[i] = std::sin(slope), tb[i] = std::tan(slope);
-    cos_offset[i] = std::cos(rotation - aspect), sin_offset[i] = std::sin(rotation - aspect);
+  void start(int i, float cos_slope, float sin_slope, float tan_slope, float cos_off, float sin_off) {
+    cb[i] = cos_slope, sb[i] = sin_slope, tb[i] = tan_slope;
+    cos_offset[i] = cos_off, sin_offset[i] = sin_off;
     svf[i] = visibility[i] = surface[i] = openness[i] = lowest[i] = 0.0;
   }
 
@@ -107,10 +109,12 @@ void add_sector(SkySums& sums, const Sectors& s, int k, const float* h, int coun
   }
 }
 
-// One cell's sums over its n horizons h[0, n).
+// One cell's sums over its n horizons h[0, n), in double throughout.
 const SkySums& one_cell(const float* h, int n, double rotation, double slope, double aspect, SkySums& sums) {
   const Sectors sectors(n);
-  sums.start(0, rotation, slope, aspect);
+  sums.start(0, 0, 0, 0, 0, 0);
+  sums.cb[0] = std::cos(slope), sums.sb[0] = std::sin(slope), sums.tb[0] = std::tan(slope);
+  sums.cos_offset[0] = std::cos(rotation - aspect), sums.sin_offset[0] = std::sin(rotation - aspect);
   for (int k = 0; k < n; ++k) add_sector(sums, sectors, k, h + k, 1);
   return sums;
 }
@@ -164,46 +168,175 @@ bool search_circle_leaves_raster(const Terrain& t, int col, int row, double radi
          gr + half_rows > t.full_height - 1;
 }
 
+namespace {
+
+// A cell's tilt as the sums use it: floats, which only weight the sectors, so that SkyViewSums
+// can keep them per cell and sky_view_products gives the same bits computing them per chunk.
+struct Tilt {
+  float cb = 1, sb = 0, tb = 0, aspect = 0;  // cosine, sine and tangent of the slope; aspect
+};
+
+Tilt tilt_at(const Terrain& t, int col, int row) {
+  Tilt tilt;
+  if (!t.valid(col, row)) return tilt;
+  double slope = 0, aspect = 0;
+  horn_slope_aspect(t, col, row, slope, aspect);
+  tilt.cb = static_cast<float>(std::cos(slope)), tilt.sb = static_cast<float>(std::sin(slope));
+  tilt.tb = static_cast<float>(std::tan(slope)), tilt.aspect = static_cast<float>(aspect);
+  return tilt;
+}
+
+// The offset of a cell's sectors from its aspect, as cosine and sine (floats, as the tilt).
+void sector_offset(double rotation, float aspect, float& cos_offset, float& sin_offset) {
+  const double offset = rotation - aspect;
+  cos_offset = static_cast<float>(std::cos(offset)), sin_offset = static_cast<float>(std::sin(offset));
+}
+
+// Writes the products of window cell (wc, wr) from chunk cell i of `sums` over n directions, or
+// leaves them NaN (nodata; --edge nodata where the search circle leaves the raster).
+void write_cell(const Terrain& terrain, const Window& window, int wc, int wr, double radius, EdgeMode edge, int n,
+                const SkySums& sums, int i, bool lower, SkyViewProducts& p, unsigned char& leaves) {
+  const int col = window.col0 + wc, row = window.row0 + wr;
+  if (!terrain.valid(col, row)) return;
+  if (search_circle_leaves_raster(terrain, col, row, radius)) {
+    leaves = 1;
+    if (edge == EdgeMode::nodata) return;
+  }
+  p.svf(wc, wr) = static_cast<float>(1.0 - sums.svf[i] / n);
+  p.sky_visibility(wc, wr) = static_cast<float>(1.0 - sums.visibility[i] / n);
+  p.svf_surface(wc, wr) = static_cast<float>(std::clamp(sums.surface[i], 0.0, 1.0));
+  p.openness_positive(wc, wr) = static_cast<float>(sums.openness[i] / n);
+  if (lower) p.openness_negative(wc, wr) = static_cast<float>(sums.lowest[i] / n);
+}
+
+SkyViewProducts empty_products(const Window& window) {
+  SkyViewProducts p;
+  p.svf = p.svf_surface = p.sky_visibility = p.openness_positive = p.openness_negative =
+      Grid<float>(window.cols, window.rows, kNaN);
+  return p;
+}
+
+}  // namespace
+
 SkyViewProducts sky_view_products(const Terrain& terrain, const Window& window, const HorizonField& field,
                                   double radius, EdgeMode edge) {
-  SkyViewProducts p;
-  const int w = window.cols, h = window.rows;
-  p.svf = p.svf_surface = p.sky_visibility = p.openness_positive = p.openness_negative = Grid<float>(w, h, kNaN);
-  const int n = field.directions;
-  const bool has_lower = !field.lower.empty();
+  SkyViewProducts p = empty_products(window);
+  const int w = window.cols, h = window.rows, n = field.directions;
+  const bool lower = !field.lower.empty();
   std::vector<unsigned char> leaves(static_cast<std::size_t>(w) * h, 0);
   const Sectors sectors(n);
-  // Rows in chunks of cells, each summed over the directions' planes: contiguous reads, and the
-  // sums stay in the first-level cache.
+  // Rows in chunks of cells, each summed over every direction's plane with its sums in the
+  // first-level cache: contiguous reads, and nothing kept per cell.
   tbb::parallel_for(0, h, [&](int wr) {
-    const int row = window.row0 + wr;
     auto sums = std::make_unique<SkySums>();
     for (int c0 = 0; c0 < w; c0 += kChunk) {
       const int count = std::min(kChunk, w - c0);
       const std::size_t first = field.cell(c0, wr);
       for (int i = 0; i < count; ++i) {
-        const int col = window.col0 + c0 + i;
-        double slope = 0, aspect = 0;
-        if (terrain.valid(col, row)) horn_slope_aspect(terrain, col, row, slope, aspect);
-        sums->start(i, field.rotation.empty() ? 0.0 : field.rotation[first + i], slope, aspect);
+        const Tilt tilt = tilt_at(terrain, window.col0 + c0 + i, window.row0 + wr);
+        float cos_offset, sin_offset;
+        sector_offset(field.rotation.empty() ? 0.0 : field.rotation[first + i], tilt.aspect, cos_offset, sin_offset);
+        sums->start(i, tilt.cb, tilt.sb, tilt.tb, cos_offset, sin_offset);
       }
       for (int k = 0; k < n; ++k) add_sector(*sums, sectors, k, field.upper.data() + field.cells() * k + first, count);
-      if (has_lower) {
+      if (lower) {
         for (int k = 0; k < n; ++k) sums->add_lowest(field.lower.data() + field.cells() * k + first, count);
       }
-      for (int i = 0; i < count; ++i) {
-        const int wc = c0 + i, col = window.col0 + wc;
-        if (!terrain.valid(col, row)) continue;
-        if (search_circle_leaves_raster(terrain, col, row, radius)) {
-          leaves[first + i] = 1;
-          if (edge == EdgeMode::nodata) continue;
-        }
-        p.svf(wc, wr) = static_cast<float>(1.0 - sums->svf[i] / n);
-        p.sky_visibility(wc, wr) = static_cast<float>(1.0 - sums->visibility[i] / n);
-        p.svf_surface(wc, wr) = static_cast<float>(std::clamp(sums->surface[i], 0.0, 1.0));
-        p.openness_positive(wc, wr) = static_cast<float>(sums->openness[i] / n);
-        if (has_lower) p.openness_negative(wc, wr) = static_cast<float>(sums->lowest[i] / n);
+      for (int i = 0; i < count; ++i)
+        write_cell(terrain, window, c0 + i, wr, radius, edge, n, *sums, i, lower, p, leaves[first + i]);
+    }
+  });
+  for (unsigned char l : leaves) p.edge_cells += l;
+  return p;
+}
+
+// What SkyViewSums keeps per cell of the window: the tilt, the sectors' offset from the aspect
+// (set with the first direction, which brings the cell's rotation) and the sums so far.
+struct SkyViewSums::State {
+  const Terrain& terrain;
+  Window window;
+  int directions;
+  Sectors sectors;
+  int next = 0;        // the next direction to add
+  bool lower = false;  // lowest angles were added
+  std::vector<Tilt> tilt;
+  std::vector<float> cos_offset, sin_offset;
+  std::vector<double> svf, visibility, surface, openness, lowest;
+
+  State(const Terrain& t, const Window& w, int n) : terrain(t), window(w), directions(n), sectors(n) {
+    const std::size_t cells = static_cast<std::size_t>(w.cols) * w.rows;
+    tilt.resize(cells);
+    cos_offset.assign(cells, 0.0f), sin_offset.assign(cells, 0.0f);
+    for (auto* v : {&svf, &visibility, &surface, &openness, &lowest}) v->assign(cells, 0.0);
+    tbb::parallel_for(0, w.rows, [&](int wr) {
+      for (int wc = 0; wc < w.cols; ++wc)
+        tilt[static_cast<std::size_t>(wr) * w.cols + wc] = tilt_at(t, w.col0 + wc, w.row0 + wr);
+    });
+  }
+};
+static_assert(sizeof(Tilt) + 2 * sizeof(float) + 5 * sizeof(double) == SkyViewSums::kBytesPerCell);
+
+SkyViewSums::SkyViewSums(const Terrain& terrain, const Window& window, int directions)
+    : s_(std::make_unique<State>(terrain, window, directions)) {}
+
+SkyViewSums::~SkyViewSums() = default;
+
+void SkyViewSums::add(int first, int count, const float* upper, const float* lower,
+                      const std::vector<float>& rotation) {
+  State& st = *s_;
+  if (first != st.next || count < 1 || first + count > st.directions)
+    throw Error("sky-view sums: directions must be added in order (internal error)");
+  if (first == 0) st.lower = lower != nullptr;
+  if (st.lower != (lower != nullptr))
+    throw Error("sky-view sums: lowest angles for some directions only (internal error)");
+  const std::size_t cells = st.svf.size();
+  // Chunks of cells, each summed over the batch's planes with its sums in the first-level cache.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells, kChunk), [&](const tbb::blocked_range<std::size_t>& r) {
+    auto chunk = std::make_unique<SkySums>();
+    for (std::size_t c0 = r.begin(); c0 < r.end(); c0 += kChunk) {
+      const int n = static_cast<int>(std::min<std::size_t>(kChunk, r.end() - c0));
+      for (int i = 0; i < n; ++i) {
+        const std::size_t c = c0 + i;
+        const Tilt& tilt = st.tilt[c];
+        if (first == 0)
+          sector_offset(rotation.empty() ? 0.0 : rotation[c], tilt.aspect, st.cos_offset[c], st.sin_offset[c]);
+        chunk->start(i, tilt.cb, tilt.sb, tilt.tb, st.cos_offset[c], st.sin_offset[c]);
+        chunk->svf[i] = st.svf[c], chunk->visibility[i] = st.visibility[c], chunk->surface[i] = st.surface[c];
+        chunk->openness[i] = st.openness[c], chunk->lowest[i] = st.lowest[c];
       }
+      for (int k = 0; k < count; ++k) add_sector(*chunk, st.sectors, first + k, upper + cells * k + c0, n);
+      if (lower) {
+        for (int k = 0; k < count; ++k) chunk->add_lowest(lower + cells * k + c0, n);
+      }
+      for (int i = 0; i < n; ++i) {
+        const std::size_t c = c0 + i;
+        st.svf[c] = chunk->svf[i], st.visibility[c] = chunk->visibility[i], st.surface[c] = chunk->surface[i];
+        st.openness[c] = chunk->openness[i], st.lowest[c] = chunk->lowest[i];
+      }
+    }
+  });
+  st.next += count;
+}
+
+SkyViewProducts SkyViewSums::finish(double radius, EdgeMode edge) const {
+  const State& st = *s_;
+  if (st.next != st.directions) throw Error("sky-view sums: not every direction was added (internal error)");
+  const Window& window = st.window;
+  SkyViewProducts p = empty_products(window);
+  std::vector<unsigned char> leaves(st.svf.size(), 0);
+  tbb::parallel_for(0, window.rows, [&](int wr) {
+    auto chunk = std::make_unique<SkySums>();
+    for (int c0 = 0; c0 < window.cols; c0 += kChunk) {
+      const int count = std::min(kChunk, window.cols - c0);
+      const std::size_t first = static_cast<std::size_t>(wr) * window.cols + c0;
+      for (int i = 0; i < count; ++i) {
+        const std::size_t c = first + i;
+        chunk->svf[i] = st.svf[c], chunk->visibility[i] = st.visibility[c], chunk->surface[i] = st.surface[c];
+        chunk->openness[i] = st.openness[c], chunk->lowest[i] = st.lowest[c];
+      }
+      for (int i = 0; i < count; ++i)
+        write_cell(st.terrain, window, c0 + i, wr, radius, edge, st.directions, *chunk, i, st.lower, p,
+                   leaves[first + i]);
     }
   });
   for (unsigned char l : leaves) p.edge_cells += l;

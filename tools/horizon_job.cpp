@@ -44,11 +44,13 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
                  "Choose the cheapest method and parameters whose calibrated 99th-percentile svf error is below "
                  "this (overrides --method, --directions, --samples, --radius)")
       ->check(CLI::Range(0.0, 1.0));
-  app.add_flag("!--no-early-exit", o.params.early_exit, "Disable early termination (march and sampled: the max-height pyramid; sweep: skipped far-field searches); same results");
+  app.add_flag("!--no-early-exit", o.params.early_exit,
+               "Disable early termination (march and sampled: the max-height pyramid; sweep: skipped far-field "
+               "searches); same results");
   add_output_options(app, o.out);
 }
 
-HorizonJob run_horizon_job(const HorizonJobOptions& o, const std::string& command) {
+HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& command) {
   check_output_writable(o.output, o.out.overwrite);
   if (o.out.format == "MEM") throw Error("output format MEM writes no file; choose a file format");
   HorizonJob job;
@@ -62,6 +64,8 @@ HorizonJob run_horizon_job(const HorizonJobOptions& o, const std::string& comman
     params = choice->params;
   }
   job.engine = make_horizon_engine(method, params);
+  job.params = params;
+  job.quiet = o.out.quiet;
   ReadOptions ro;
   ro.band = o.band;
   ro.z_scale = o.z_scale;
@@ -70,12 +74,6 @@ HorizonJob run_horizon_job(const HorizonJobOptions& o, const std::string& comman
   if (report.undeclared_nan_cells > 0 && !o.out.quiet) {
     std::fprintf(stderr, "Warning: %lld NaN cells in '%s' are not the declared nodata value; treated as nodata\n",
                  static_cast<long long>(report.undeclared_nan_cells), o.input.c_str());
-  }
-  ProgressCounter progress;
-  progress.set_total(static_cast<std::uint64_t>(job.terrain.width()) * job.terrain.height());
-  {
-    ProgressReporter reporter(progress, o.out.quiet);
-    job.engine->compute(job.terrain, Window::whole(job.terrain), job.field, progress);
   }
   auto& m = job.metadata;
   m["SKYVIEW_VERSION"] = version();
@@ -101,6 +99,22 @@ HorizonJob run_horizon_job(const HorizonJobOptions& o, const std::string& comman
   }
   m["NODATA_POLICY"] = "nodata cells give nodata; nodata inside a search path does not occlude";
   m["ANGLE_CONVENTION"] = "elevation above the horizontal; azimuth clockwise from true north";
+  return job;
+}
+
+void compute_horizons(HorizonJob& job, const DirectionBatchSink* take) {
+  ProgressCounter progress;
+  progress.set_total(static_cast<std::uint64_t>(job.terrain.width()) * job.terrain.height());
+  ProgressReporter reporter(progress, job.quiet);
+  if (take)
+    job.engine->compute_directions(job.terrain, Window::whole(job.terrain), job.field, progress, *take);
+  else
+    job.engine->compute(job.terrain, Window::whole(job.terrain), job.field, progress);
+}
+
+HorizonJob run_horizon_job(const HorizonJobOptions& o, const std::string& command) {
+  HorizonJob job = prepare_horizon_job(o, command);
+  compute_horizons(job);
   return job;
 }
 

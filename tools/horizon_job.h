@@ -28,12 +28,21 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o);
 struct HorizonJob {
   Terrain terrain;
   std::unique_ptr<HorizonEngine> engine;
+  HorizonParams params;  // as run (--max-error may have chosen them)
   HorizonField field;
   EdgeMode edge = EdgeMode::open;
   std::map<std::string, std::string> metadata;  // run parameters for the output
+  bool quiet = false;
 };
 
-// Reads the input, builds the engine and computes horizons with progress on stderr.
+// Reads the input, builds the engine and records the run's parameters; computes nothing yet.
+HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& command);
+
+// Computes the job's horizons with progress on stderr: into job.field, or (with `take`) handed
+// over direction by direction (HorizonEngine::compute_directions).
+void compute_horizons(HorizonJob& job, const DirectionBatchSink* take = nullptr);
+
+// prepare_horizon_job, then compute_horizons into job.field.
 HorizonJob run_horizon_job(const HorizonJobOptions& o, const std::string& command);
 
 }  // namespace skyview::cli

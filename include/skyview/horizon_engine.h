@@ -3,6 +3,7 @@
 // that direction. Every method that computes it (sampled, march, sweep, raycast) sits behind
 // HorizonEngine so they share products, tests and one benchmark.
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -51,6 +52,10 @@ struct HorizonField {
   double azimuth(std::size_t cell, int k) const;  // centre azimuth of sector k for a cell
 };
 
+// Receives directions [first, first + count) of a window's horizons as planes laid out as in
+// HorizonField (one after another; `lower` null unless lowest angles were asked for).
+using DirectionBatchSink = std::function<void(int first, int count, const float* upper, const float* lower)>;
+
 class HorizonEngine {
  public:
   virtual ~HorizonEngine() = default;
@@ -63,6 +68,12 @@ class HorizonEngine {
   // Fills `out` for the cells of `window`; terrain outside the window (the halo) occludes.
   virtual void compute(const Terrain& terrain, const Window& window, HorizonField& out,
                        ProgressCounter& progress) const = 0;
+  // The same horizons handed to `take` in batches, in order of direction, for products that need
+  // not keep them all (SkyViewSums). `out` gets what the method gives besides the planes (rotation,
+  // Monte-Carlo svf) and its size; by default compute() fills all of it and `take` gets one batch.
+  // Methods that find one direction at a time (the sweep) keep only the directions in progress.
+  virtual void compute_directions(const Terrain& terrain, const Window& window, HorizonField& out,
+                                  ProgressCounter& progress, const DirectionBatchSink& take) const;
 };
 
 // Names accepted by --method, in the order the docs list them.

@@ -7,6 +7,7 @@
 //   svf_surface    = Σ [cosβ cos²H_k Δ/2π + sinβ cos(φ_k-A) sin(Δ/2) (π/2 - H_k - sinH_k cosH_k)/π]
 //                    with H_k = max(h_k, t_k, 0), t_k the surface plane's own horizon
 //   openness_positive = mean(90° - h_k), openness_negative = mean(90° + lowest angle_k)  (Yokoyama 2002)
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -34,8 +35,31 @@ struct SkyViewProducts {
 // True where the ground circle of `radius` metres around the cell leaves the full raster.
 bool search_circle_leaves_raster(const Terrain& terrain, int col, int row, double radius);
 
+// The products summed direction by direction, so that a method that finds one direction at a time
+// (HorizonEngine::compute_directions) need not keep every direction's horizons: per cell, the
+// surface's tilt and five running sums, about 64 bytes, whatever the number of directions.
+class SkyViewSums {
+ public:
+  static constexpr int kBytesPerCell = 64;  // the tilt and the sums: memory per cell of the window
+
+  SkyViewSums(const Terrain& terrain, const Window& window, int directions);
+  ~SkyViewSums();
+  SkyViewSums(const SkyViewSums&) = delete;
+  SkyViewSums& operator=(const SkyViewSums&) = delete;
+  // Directions [first, first + count), added in order from direction 0: their planes of horizon
+  // angles (window-sized, row-major, one after another), their lowest angles likewise (or null,
+  // for every batch), and each cell's rotation of the direction set (radians; empty: none).
+  void add(int first, int count, const float* upper, const float* lower, const std::vector<float>& rotation);
+  // Openness_negative is NaN unless lowest angles were added.
+  SkyViewProducts finish(double radius, EdgeMode edge) const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> s_;
+};
+
 // Products for the cells of `window`; `field` must come from that window. Openness bands are
-// NaN when the field has no lower horizons.
+// NaN when the field has no lower horizons. The same sums as SkyViewSums, in one batch.
 SkyViewProducts sky_view_products(const Terrain& terrain, const Window& window, const HorizonField& field,
                                   double radius, EdgeMode edge);
 

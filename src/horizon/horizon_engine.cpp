@@ -24,6 +24,12 @@ double HorizonField::azimuth(std::size_t cell, int k) const {
   return sector_azimuth(k, directions) + (rotation.empty() ? 0.0 : rotation[cell]);
 }
 
+void HorizonEngine::compute_directions(const Terrain& terrain, const Window& window, HorizonField& out,
+                                       ProgressCounter& progress, const DirectionBatchSink& take) const {
+  compute(terrain, window, out, progress);
+  take(0, out.directions, out.upper.data(), out.lower.empty() ? nullptr : out.lower.data());
+}
+
 std::vector<std::string> horizon_method_names() { return {"sampled", "march", "sweep", "raycast"}; }
 
 std::unique_ptr<HorizonEngine> make_horizon_engine(std::string_view method, const HorizonParams& params) {

@@ -25,10 +25,13 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "earth_curvature.h"
@@ -701,23 +704,85 @@ class SweepEngine final : public HorizonEngine {
   void compute(const Terrain& terrain, const Window& window, HorizonField& out,
                ProgressCounter& progress) const override {
     out.resize(window.cols, window.rows, p_.directions, p_.lower);
-    const Jacobian j = terrain.frame.at(terrain.origin_col, terrain.origin_row);
-    const double extent = std::hypot(terrain.width() * std::hypot(j.a, j.c), terrain.height() * std::hypot(j.b, j.d));
-    const double c = curvature_coefficient(p_, p_.radius > 0 ? p_.radius : extent, terrain.frame.earth_radius());
-    const std::uint64_t per_direction = static_cast<std::uint64_t>(window.cells()) / std::max(1, p_.directions);
-    const int W = terrain.width(), H = terrain.height();
-    std::vector<float> transposed(static_cast<std::size_t>(W) * H);
-    for (int r = 0; r < H; ++r) {
-      for (int col = 0; col < W; ++col) transposed[static_cast<std::size_t>(col) * H + r] = terrain.heights(col, r);
-    }
+    const Inputs in = inputs(terrain);
     tbb::parallel_for(0, p_.directions, [&](int k) {
-      sweep_direction(terrain, transposed.data(), window, sector_azimuth(k, p_.directions), c, p_.samples,
-                      p_.early_exit, radius(), out.upper_plane(k), p_.lower ? out.lower_plane(k) : nullptr);
-      progress.advance(per_direction);
+      sweep(terrain, in, window, k, out.upper_plane(k), p_.lower ? out.lower_plane(k) : nullptr);
+      progress.advance(window.cells() / std::max(1, p_.directions));
+    });
+  }
+
+  // Workers take directions in order; whichever finishes the next direction to hand over hands it
+  // and any finished after it to `take`, one at a time (planes finished early wait). So only the
+  // directions in progress, and those waiting for an earlier one, are held: a few planes, not all.
+  void compute_directions(const Terrain& terrain, const Window& window, HorizonField& out, ProgressCounter& progress,
+                          const DirectionBatchSink& take) const override {
+    out.resize(0, 0, p_.directions, false);
+    out.cols = window.cols, out.rows = window.rows;
+    const Inputs in = inputs(terrain);
+    const std::size_t cells = window.cells();
+    struct Planes {
+      std::unique_ptr<float[]> upper, lower;
+    };
+    std::mutex mutex;
+    std::map<int, Planes> finished;
+    std::vector<Planes> spare;
+    int next = 0;  // the next direction to hand over
+    bool handing = false;
+    std::atomic<int> started{0};
+    tbb::parallel_for(0, p_.directions, [&](int) {
+      const int k = started++;
+      Planes planes;
+      {
+        const std::lock_guard<std::mutex> lock(mutex);
+        if (!spare.empty()) planes = std::move(spare.back()), spare.pop_back();
+      }
+      if (!planes.upper) {
+        planes.upper.reset(new float[cells]);
+        if (p_.lower) planes.lower.reset(new float[cells]);
+      }
+      sweep(terrain, in, window, k, planes.upper.get(), planes.lower.get());
+      progress.advance(cells / std::max(1, p_.directions));
+      std::unique_lock<std::mutex> lock(mutex);
+      finished.emplace(k, std::move(planes));
+      if (handing) return;  // the worker handing over will find it
+      handing = true;
+      while (!finished.empty() && finished.begin()->first == next) {
+        Planes ready = std::move(finished.begin()->second);
+        finished.erase(finished.begin());
+        lock.unlock();
+        take(next, 1, ready.upper.get(), ready.lower.get());
+        lock.lock();
+        spare.push_back(std::move(ready));
+        ++next;
+      }
+      handing = false;
     });
   }
 
  private:
+  // What every direction reads: the curvature coefficient and the heights transposed, so that lines
+  // advancing by columns read contiguous memory too.
+  struct Inputs {
+    double c;
+    std::vector<float> transposed;
+  };
+  Inputs inputs(const Terrain& terrain) const {
+    const Jacobian j = terrain.frame.at(terrain.origin_col, terrain.origin_row);
+    const double extent = std::hypot(terrain.width() * std::hypot(j.a, j.c), terrain.height() * std::hypot(j.b, j.d));
+    Inputs in;
+    in.c = curvature_coefficient(p_, p_.radius > 0 ? p_.radius : extent, terrain.frame.earth_radius());
+    const int W = terrain.width(), H = terrain.height();
+    in.transposed.resize(static_cast<std::size_t>(W) * H);
+    for (int r = 0; r < H; ++r) {
+      for (int col = 0; col < W; ++col) in.transposed[static_cast<std::size_t>(col) * H + r] = terrain.heights(col, r);
+    }
+    return in;
+  }
+  void sweep(const Terrain& terrain, const Inputs& in, const Window& window, int k, float* upper, float* lower) const {
+    sweep_direction(terrain, in.transposed.data(), window, sector_azimuth(k, p_.directions), in.c, p_.samples,
+                    p_.early_exit, radius(), upper, lower);
+  }
+
   HorizonParams p_;
 };
 

@@ -355,3 +355,55 @@ TEST(SweepHulls, TheLowestAngleIsTheHorizonOfTheNegatedTerrain) {
     }
   }
 }
+
+// Products summed direction by direction as a method hands them over (what `skyview svf` does past
+// 16 directions) must be the products of the whole field, bit for bit: for the sweep, which holds
+// only the directions in progress, and for a method that computes the whole field first (the
+// sampled method's per-cell rotation included). Nodata, the lowest angle and curvature included.
+TEST(SkyViewSums, DirectionByDirectionEqualsTheWholeField) {
+  Terrain t = small_city_with_nodata();
+  punch_nodata_block(t);
+  for (const char* method : {"sweep", "sampled"}) {
+    HorizonParams p = sweep_params(24, "on", 8);
+    if (std::string(method) == "sampled") p.samples = 16, p.radius = 60.0, p.curvature = "off";
+    const auto engine = make_horizon_engine(method, p);
+    const Window whole = Window::whole(t);
+    const HorizonField field = run(t, whole, method, p);
+    const SkyViewProducts expected = sky_view_products(t, whole, field, engine->radius(), EdgeMode::open);
+
+    SkyViewSums sums(t, whole, p.directions);
+    HorizonField rest;
+    ProgressCounter progress;
+    int handed = 0;
+    engine->compute_directions(t, whole, rest, progress, [&](int first, int count, const float* up, const float* low) {
+      ASSERT_EQ(first, handed) << "in order";
+      ASSERT_NE(low, nullptr);
+      handed += count;
+      sums.add(first, count, up, low, rest.rotation);
+    });
+    ASSERT_EQ(handed, p.directions);
+    if (std::string(method) == "sweep") {
+      EXPECT_TRUE(rest.upper.empty()) << "the sweep keeps no field";
+    }
+    const SkyViewProducts got = sums.finish(engine->radius(), EdgeMode::open);
+    std::size_t compared = 0;
+    for (int r = 0; r < t.height(); ++r) {
+      for (int c = 0; c < t.width(); ++c) {
+        for (const auto& [a, b] : {std::pair{&got.svf, &expected.svf},
+                                   {&got.svf_surface, &expected.svf_surface},
+                                   {&got.sky_visibility, &expected.sky_visibility},
+                                   {&got.openness_positive, &expected.openness_positive},
+                                   {&got.openness_negative, &expected.openness_negative}}) {
+          if (std::isnan((*b)(c, r))) {
+            ASSERT_TRUE(std::isnan((*a)(c, r)));
+            continue;
+          }
+          ASSERT_EQ((*a)(c, r), (*b)(c, r)) << method << " at " << c << "," << r;
+          ++compared;
+        }
+      }
+    }
+    EXPECT_GT(compared, 5u * t.width() * t.height() * 9 / 10);
+    EXPECT_EQ(got.edge_cells, expected.edge_cells);
+  }
+}
