@@ -17,9 +17,6 @@ namespace skyview {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-}  // namespace
-
-namespace {
 
 // sin and cos of x in [0, π/2] without a library call, so that a loop over cells vectorises:
 // Taylor series to degrees 15 and 16 on [0, π/4] (truncation below 5e-17), reflected about π/4
@@ -58,9 +55,9 @@ struct Sectors {
   }
 };
 
-constexpr int kChunk = 256;  // cells of a row summed together, their sums in the first-level cache
+constexpr int kChunk = 256;  // cells summed together, their sums in the first-level cache
 
-// A chunk of cells of one row: what their sectors share (the surface's tilt, and the offset of
+// A chunk of consecutive cells of the window: what their sectors share (the surface's tilt, and the offset of
 // the sectors from the aspect) and the sums over the sectors so far.
 struct SkySums {
   double cb[kChunk], sb[kChunk], tb[kChunk];                // cosine, sine and tangent of the slope
