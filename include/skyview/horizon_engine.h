@@ -74,6 +74,9 @@ class HorizonEngine {
   // Methods that find one direction at a time (the sweep) keep only the directions in progress.
   virtual void compute_directions(const Terrain& terrain, const Window& window, HorizonField& out,
                                   ProgressCounter& progress, const DirectionBatchSink& take) const;
+  // True where compute_directions holds only the directions in progress (otherwise summing the
+  // products as they arrive saves no memory).
+  virtual bool streams_directions() const { return false; }
 };
 
 // Names accepted by --method, in the order the docs list them.

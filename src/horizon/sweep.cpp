@@ -714,6 +714,7 @@ class SweepEngine final : public HorizonEngine {
   // Workers take directions in order; whichever finishes the next direction to hand over hands it
   // and any finished after it to `take`, one at a time (planes finished early wait). So only the
   // directions in progress, and those waiting for an earlier one, are held: a few planes, not all.
+  bool streams_directions() const override { return true; }
   void compute_directions(const Terrain& terrain, const Window& window, HorizonField& out, ProgressCounter& progress,
                           const DirectionBatchSink& take) const override {
     out.resize(0, 0, p_.directions, false);
