@@ -106,6 +106,16 @@ void add_sector(SkySums& sums, const Sectors& s, int k, const float* h, int coun
   }
 }
 
+// Directions [first, first + count) of planes laid out as in HorizonField (`cells` apart; lower
+// null or likewise), for the chunk's cells from cell `c0` of the window.
+void add_planes(SkySums& sums, const Sectors& sectors, int first, int count, const float* upper, const float* lower,
+                std::size_t cells, std::size_t c0, int n) {
+  for (int k = 0; k < count; ++k) add_sector(sums, sectors, first + k, upper + cells * k + c0, n);
+  if (lower) {
+    for (int k = 0; k < count; ++k) sums.add_lowest(lower + cells * k + c0, n);
+  }
+}
+
 // One cell's sums over its n horizons h[0, n), in double throughout.
 const SkySums& one_cell(const float* h, int n, double rotation, double slope, double aspect, SkySums& sums) {
   const Sectors sectors(n);
@@ -235,10 +245,8 @@ SkyViewProducts sky_view_products(const Terrain& terrain, const Window& window, 
         sector_offset(field.rotation.empty() ? 0.0 : field.rotation[first + i], tilt.aspect, cos_offset, sin_offset);
         sums->start(i, tilt.cb, tilt.sb, tilt.tb, cos_offset, sin_offset);
       }
-      for (int k = 0; k < n; ++k) add_sector(*sums, sectors, k, field.upper.data() + field.cells() * k + first, count);
-      if (lower) {
-        for (int k = 0; k < n; ++k) sums->add_lowest(field.lower.data() + field.cells() * k + first, count);
-      }
+      add_planes(*sums, sectors, 0, n, field.upper.data(), lower ? field.lower.data() : nullptr, field.cells(), first,
+                 count);
       for (int i = 0; i < count; ++i)
         write_cell(terrain, window, c0 + i, wr, radius, edge, n, *sums, i, lower, p, leaves[first + i]);
     }
@@ -270,6 +278,16 @@ struct SkyViewSums::State {
         tilt[static_cast<std::size_t>(wr) * w.cols + wc] = tilt_at(t, w.col0 + wc, w.row0 + wr);
     });
   }
+
+  // Window cell c's sums to and from chunk cell i.
+  void load(std::size_t c, SkySums& chunk, int i) const {
+    chunk.svf[i] = svf[c], chunk.visibility[i] = visibility[c], chunk.surface[i] = surface[c];
+    chunk.openness[i] = openness[c], chunk.lowest[i] = lowest[c];
+  }
+  void store(std::size_t c, const SkySums& chunk, int i) {
+    svf[c] = chunk.svf[i], visibility[c] = chunk.visibility[i], surface[c] = chunk.surface[i];
+    openness[c] = chunk.openness[i], lowest[c] = chunk.lowest[i];
+  }
 };
 static_assert(sizeof(Tilt) + 2 * sizeof(float) + 5 * sizeof(double) == SkyViewSums::kBytesPerCell);
 
@@ -298,18 +316,10 @@ void SkyViewSums::add(int first, int count, const float* upper, const float* low
         if (first == 0)
           sector_offset(rotation.empty() ? 0.0 : rotation[c], tilt.aspect, st.cos_offset[c], st.sin_offset[c]);
         chunk->start(i, tilt.cb, tilt.sb, tilt.tb, st.cos_offset[c], st.sin_offset[c]);
-        chunk->svf[i] = st.svf[c], chunk->visibility[i] = st.visibility[c], chunk->surface[i] = st.surface[c];
-        chunk->openness[i] = st.openness[c], chunk->lowest[i] = st.lowest[c];
+        st.load(c, *chunk, i);
       }
-      for (int k = 0; k < count; ++k) add_sector(*chunk, st.sectors, first + k, upper + cells * k + c0, n);
-      if (lower) {
-        for (int k = 0; k < count; ++k) chunk->add_lowest(lower + cells * k + c0, n);
-      }
-      for (int i = 0; i < n; ++i) {
-        const std::size_t c = c0 + i;
-        st.svf[c] = chunk->svf[i], st.visibility[c] = chunk->visibility[i], st.surface[c] = chunk->surface[i];
-        st.openness[c] = chunk->openness[i], st.lowest[c] = chunk->lowest[i];
-      }
+      add_planes(*chunk, st.sectors, first, count, upper, lower, cells, c0, n);
+      for (int i = 0; i < n; ++i) st.store(c0 + i, *chunk, i);
     }
   });
   st.next += count;
@@ -326,11 +336,7 @@ SkyViewProducts SkyViewSums::finish(double radius, EdgeMode edge) const {
     for (int c0 = 0; c0 < window.cols; c0 += kChunk) {
       const int count = std::min(kChunk, window.cols - c0);
       const std::size_t first = static_cast<std::size_t>(wr) * window.cols + c0;
-      for (int i = 0; i < count; ++i) {
-        const std::size_t c = first + i;
-        chunk->svf[i] = st.svf[c], chunk->visibility[i] = st.visibility[c], chunk->surface[i] = st.surface[c];
-        chunk->openness[i] = st.openness[c], chunk->lowest[i] = st.lowest[c];
-      }
+      for (int i = 0; i < count; ++i) st.load(first + i, *chunk, i);
       for (int i = 0; i < count; ++i)
         write_cell(st.terrain, window, c0 + i, wr, radius, edge, st.directions, *chunk, i, st.lower, p,
                    leaves[first + i]);
