@@ -7,6 +7,7 @@
 #include <string>
 
 #include "skyview/horizon_engine.h"
+#include "skyview/sky_view.h"
 #include "skyview/synthetic.h"
 
 namespace {
@@ -75,6 +76,46 @@ void BM_Sweep16WithLower(benchmark::State& s) {
   run(s, "sweep", p);
 }
 
+// What `skyview svf` runs: horizons and lowest angles by the sweep, then the five products. Whole:
+// every direction held, products summed at the end; Streamed: products summed as the sweep hands
+// the directions over (the CLI's path from 16 directions on). The counter is still cell-directions.
+void BM_SvfWhole16(benchmark::State& state) {
+  const skyview::Terrain& t = city(bench_size());
+  skyview::HorizonParams p;
+  p.lower = true;
+  auto engine = skyview::make_horizon_engine("sweep", p);
+  const skyview::Window whole = skyview::Window::whole(t);
+  for (auto _ : state) {
+    skyview::HorizonField field;
+    skyview::ProgressCounter progress;
+    engine->compute(t, whole, field, progress);
+    const auto products = skyview::sky_view_products(t, whole, field, engine->radius(), skyview::EdgeMode::open);
+    benchmark::DoNotOptimize(products.svf.data());
+  }
+  state.counters["cell_dirs_per_s"] = benchmark::Counter(static_cast<double>(t.width()) * t.height() * p.directions,
+                                                         benchmark::Counter::kIsIterationInvariantRate);
+}
+void BM_SvfStreamed16(benchmark::State& state) {
+  const skyview::Terrain& t = city(bench_size());
+  skyview::HorizonParams p;
+  p.lower = true;
+  auto engine = skyview::make_horizon_engine("sweep", p);
+  const skyview::Window whole = skyview::Window::whole(t);
+  for (auto _ : state) {
+    skyview::SkyViewSums sums(t, whole, p.directions);
+    skyview::HorizonField rest;
+    skyview::ProgressCounter progress;
+    engine->compute_directions(t, whole, rest, progress,
+                               [&](int first, int count, const float* upper, const float* lower) {
+                                 sums.add(first, count, upper, lower, rest.rotation);
+                               });
+    const auto products = sums.finish(engine->radius(), skyview::EdgeMode::open);
+    benchmark::DoNotOptimize(products.svf.data());
+  }
+  state.counters["cell_dirs_per_s"] = benchmark::Counter(static_cast<double>(t.width()) * t.height() * p.directions,
+                                                         benchmark::Counter::kIsIterationInvariantRate);
+}
+
 }  // namespace
 
 BENCHMARK(BM_Sampled16x16)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
@@ -83,4 +124,6 @@ BENCHMARK(BM_March16R100)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterati
 BENCHMARK(BM_March16R100NoEarlyExit)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 BENCHMARK(BM_Sweep16)->Arg(64)->Arg(8)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_Sweep16WithLower)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+BENCHMARK(BM_SvfWhole16)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+BENCHMARK(BM_SvfStreamed16)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK_MAIN();

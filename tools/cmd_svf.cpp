@@ -24,7 +24,7 @@ Runner setup(CLI::App& app) {
     // of the products SkyViewSums::kBytesPerCell. From twice that on (16 directions), a method that
     // finds one direction at a time (the sweep) hands them over as they are done, and they are
     // summed then: the same bits (tested), 41% less memory at 16 directions and 77% at 64 on a
-    // 2000 x 2000 city, for about 5% more CPU time and no more wall time.
+    // 2000 x 2000 city, for about 10% more compute (bench_horizon) and no more wall time.
     const Window whole = Window::whole(job.terrain);
     SkyViewProducts p;
     if (job.engine->streams_directions() && 8.0 * job.params.directions >= 2.0 * SkyViewSums::kBytesPerCell) {
