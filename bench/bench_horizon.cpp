@@ -76,44 +76,44 @@ void BM_Sweep16WithLower(benchmark::State& s) {
   run(s, "sweep", p);
 }
 
-// What `skyview svf` runs: horizons and lowest angles by the sweep, then the five products. Whole:
-// every direction held, products summed at the end; Streamed: products summed as the sweep hands
-// the directions over (the CLI's path from 16 directions on). The counter is still cell-directions.
-void BM_SvfWhole16(benchmark::State& state) {
+// What `skyview svf` runs: horizons and lowest angles by the sweep, then the five products, computed
+// by `products(terrain, whole window, engine)`. The counter is still cell-directions.
+template <class Products>
+void run_svf(benchmark::State& state, Products&& products) {
   const skyview::Terrain& t = city(bench_size());
   skyview::HorizonParams p;
   p.lower = true;
-  auto engine = skyview::make_horizon_engine("sweep", p);
-  const skyview::Window whole = skyview::Window::whole(t);
+  const auto engine = skyview::make_horizon_engine("sweep", p);
   for (auto _ : state) {
-    skyview::HorizonField field;
-    skyview::ProgressCounter progress;
-    engine->compute(t, whole, field, progress);
-    const auto products = skyview::sky_view_products(t, whole, field, engine->radius(), skyview::EdgeMode::open);
-    benchmark::DoNotOptimize(products.svf.data());
+    const skyview::SkyViewProducts result = products(t, skyview::Window::whole(t), *engine, p.directions);
+    benchmark::DoNotOptimize(result.svf.data());
   }
   state.counters["cell_dirs_per_s"] = benchmark::Counter(static_cast<double>(t.width()) * t.height() * p.directions,
                                                          benchmark::Counter::kIsIterationInvariantRate);
 }
+
+// Every direction held, products summed at the end.
+void BM_SvfWhole16(benchmark::State& state) {
+  run_svf(state, [](const skyview::Terrain& t, const skyview::Window& w, const skyview::HorizonEngine& engine, int) {
+    skyview::HorizonField field;
+    skyview::ProgressCounter progress;
+    engine.compute(t, w, field, progress);
+    return skyview::sky_view_products(t, w, field, engine.radius(), skyview::EdgeMode::open);
+  });
+}
+
+// Products summed as the sweep hands the directions over (the CLI's path from 16 directions on).
 void BM_SvfStreamed16(benchmark::State& state) {
-  const skyview::Terrain& t = city(bench_size());
-  skyview::HorizonParams p;
-  p.lower = true;
-  auto engine = skyview::make_horizon_engine("sweep", p);
-  const skyview::Window whole = skyview::Window::whole(t);
-  for (auto _ : state) {
-    skyview::SkyViewSums sums(t, whole, p.directions);
+  run_svf(state, [](const skyview::Terrain& t, const skyview::Window& w, const skyview::HorizonEngine& engine,
+                    int directions) {
+    skyview::SkyViewSums sums(t, w, directions);
     skyview::HorizonField rest;
     skyview::ProgressCounter progress;
-    engine->compute_directions(t, whole, rest, progress,
-                               [&](int first, int count, const float* upper, const float* lower) {
-                                 sums.add(first, count, upper, lower, rest.rotation);
-                               });
-    const auto products = sums.finish(engine->radius(), skyview::EdgeMode::open);
-    benchmark::DoNotOptimize(products.svf.data());
-  }
-  state.counters["cell_dirs_per_s"] = benchmark::Counter(static_cast<double>(t.width()) * t.height() * p.directions,
-                                                         benchmark::Counter::kIsIterationInvariantRate);
+    engine.compute_directions(t, w, rest, progress, [&](int first, int count, const float* upper, const float* lower) {
+      sums.add(first, count, upper, lower, rest.rotation);
+    });
+    return sums.finish(engine.radius(), skyview::EdgeMode::open);
+  });
 }
 
 }  // namespace
