@@ -65,11 +65,11 @@ struct SkySums {
   double svf[kChunk], visibility[kChunk], surface[kChunk];  // Σ sin² H0, Σ sin H0, Σ surface share
   double openness[kChunk], lowest[kChunk];                  // Σ (90° - h), Σ (90° + lowest angle)
 
-  void start(int i, float cos_slope, float sin_slope, float tan_slope, float cos_off, float sin_off) {
+  void set_tilt(int i, double cos_slope, double sin_slope, double tan_slope, double cos_off, double sin_off) {
     cb[i] = cos_slope, sb[i] = sin_slope, tb[i] = tan_slope;
     cos_offset[i] = cos_off, sin_offset[i] = sin_off;
-    svf[i] = visibility[i] = surface[i] = openness[i] = lowest[i] = 0.0;
   }
+  void clear(int i) { svf[i] = visibility[i] = surface[i] = openness[i] = lowest[i] = 0.0; }
 
   void add_lowest(const float* low, int count) {
     for (int i = 0; i < count; ++i) lowest[i] += 90.0 + low[i] * (180.0 / kPi);
@@ -119,9 +119,9 @@ void add_planes(SkySums& sums, const Sectors& sectors, int first, int count, con
 // One cell's sums over its n horizons h[0, n), in double throughout.
 const SkySums& one_cell(const float* h, int n, double rotation, double slope, double aspect, SkySums& sums) {
   const Sectors sectors(n);
-  sums.start(0, 0, 0, 0, 0, 0);
-  sums.cb[0] = std::cos(slope), sums.sb[0] = std::sin(slope), sums.tb[0] = std::tan(slope);
-  sums.cos_offset[0] = std::cos(rotation - aspect), sums.sin_offset[0] = std::sin(rotation - aspect);
+  sums.set_tilt(0, std::cos(slope), std::sin(slope), std::tan(slope), std::cos(rotation - aspect),
+                std::sin(rotation - aspect));
+  sums.clear(0);
   for (int k = 0; k < n; ++k) add_sector(sums, sectors, k, h + k, 1);
   return sums;
 }
@@ -199,21 +199,26 @@ void sector_offset(double rotation, float aspect, float& cos_offset, float& sin_
   cos_offset = static_cast<float>(std::cos(offset)), sin_offset = static_cast<float>(std::sin(offset));
 }
 
-// Writes the products of window cell (wc, wr) from chunk cell i of `sums` over n directions, or
-// leaves them NaN (nodata; --edge nodata where the search circle leaves the raster).
+// A cell's sums over all n directions.
+struct Totals {
+  double svf, visibility, surface, openness, lowest;
+};
+
+// Writes the products of window cell (wc, wr) from its totals over n directions, or leaves them
+// NaN (nodata; --edge nodata where the search circle leaves the raster).
 void write_cell(const Terrain& terrain, const Window& window, int wc, int wr, double radius, EdgeMode edge, int n,
-                const SkySums& sums, int i, bool lower, SkyViewProducts& p, unsigned char& leaves) {
+                const Totals& sums, bool lower, SkyViewProducts& p, unsigned char& leaves) {
   const int col = window.col0 + wc, row = window.row0 + wr;
   if (!terrain.valid(col, row)) return;
   if (search_circle_leaves_raster(terrain, col, row, radius)) {
     leaves = 1;
     if (edge == EdgeMode::nodata) return;
   }
-  p.svf(wc, wr) = static_cast<float>(1.0 - sums.svf[i] / n);
-  p.sky_visibility(wc, wr) = static_cast<float>(1.0 - sums.visibility[i] / n);
-  p.svf_surface(wc, wr) = static_cast<float>(std::clamp(sums.surface[i], 0.0, 1.0));
-  p.openness_positive(wc, wr) = static_cast<float>(sums.openness[i] / n);
-  if (lower) p.openness_negative(wc, wr) = static_cast<float>(sums.lowest[i] / n);
+  p.svf(wc, wr) = static_cast<float>(1.0 - sums.svf / n);
+  p.sky_visibility(wc, wr) = static_cast<float>(1.0 - sums.visibility / n);
+  p.svf_surface(wc, wr) = static_cast<float>(std::clamp(sums.surface, 0.0, 1.0));
+  p.openness_positive(wc, wr) = static_cast<float>(sums.openness / n);
+  if (lower) p.openness_negative(wc, wr) = static_cast<float>(sums.lowest / n);
 }
 
 SkyViewProducts empty_products(const Window& window) {
@@ -243,12 +248,15 @@ SkyViewProducts sky_view_products(const Terrain& terrain, const Window& window, 
         const Tilt tilt = tilt_at(terrain, window.col0 + c0 + i, window.row0 + wr);
         float cos_offset, sin_offset;
         sector_offset(field.rotation.empty() ? 0.0 : field.rotation[first + i], tilt.aspect, cos_offset, sin_offset);
-        sums->start(i, tilt.cb, tilt.sb, tilt.tb, cos_offset, sin_offset);
+        sums->set_tilt(i, tilt.cb, tilt.sb, tilt.tb, cos_offset, sin_offset);
+        sums->clear(i);
       }
       add_planes(*sums, sectors, 0, n, field.upper.data(), lower ? field.lower.data() : nullptr, field.cells(), first,
                  count);
-      for (int i = 0; i < count; ++i)
-        write_cell(terrain, window, c0 + i, wr, radius, edge, n, *sums, i, lower, p, leaves[first + i]);
+      for (int i = 0; i < count; ++i) {
+        const Totals totals{sums->svf[i], sums->visibility[i], sums->surface[i], sums->openness[i], sums->lowest[i]};
+        write_cell(terrain, window, c0 + i, wr, radius, edge, n, totals, lower, p, leaves[first + i]);
+      }
     }
   });
   for (unsigned char l : leaves) p.edge_cells += l;
@@ -260,15 +268,14 @@ SkyViewProducts sky_view_products(const Terrain& terrain, const Window& window, 
 struct SkyViewSums::State {
   const Terrain& terrain;
   Window window;
-  int directions;
-  Sectors sectors;
+  Sectors sectors;     // sectors.n: the directions
   int next = 0;        // the next direction to add
   bool lower = false;  // lowest angles were added
   std::vector<Tilt> tilt;
   std::vector<float> cos_offset, sin_offset;
   std::vector<double> svf, visibility, surface, openness, lowest;
 
-  State(const Terrain& t, const Window& w, int n) : terrain(t), window(w), directions(n), sectors(n) {
+  State(const Terrain& t, const Window& w, int n) : terrain(t), window(w), sectors(n) {
     const std::size_t cells = static_cast<std::size_t>(w.cols) * w.rows;
     tilt.resize(cells);
     cos_offset.assign(cells, 0.0f), sin_offset.assign(cells, 0.0f);
@@ -279,6 +286,7 @@ struct SkyViewSums::State {
     });
   }
 
+  Totals totals(std::size_t c) const { return {svf[c], visibility[c], surface[c], openness[c], lowest[c]}; }
   // Window cell c's sums to and from chunk cell i.
   void load(std::size_t c, SkySums& chunk, int i) const {
     chunk.svf[i] = svf[c], chunk.visibility[i] = visibility[c], chunk.surface[i] = surface[c];
@@ -299,7 +307,7 @@ SkyViewSums::~SkyViewSums() = default;
 void SkyViewSums::add(int first, int count, const float* upper, const float* lower,
                       const std::vector<float>& rotation) {
   State& st = *s_;
-  if (first != st.next || count < 1 || first + count > st.directions)
+  if (first != st.next || count < 1 || first + count > st.sectors.n)
     throw Error("sky-view sums: directions must be added in order (internal error)");
   if (first == 0) st.lower = lower != nullptr;
   if (st.lower != (lower != nullptr))
@@ -315,7 +323,7 @@ void SkyViewSums::add(int first, int count, const float* upper, const float* low
         const Tilt& tilt = st.tilt[c];
         if (first == 0)
           sector_offset(rotation.empty() ? 0.0 : rotation[c], tilt.aspect, st.cos_offset[c], st.sin_offset[c]);
-        chunk->start(i, tilt.cb, tilt.sb, tilt.tb, st.cos_offset[c], st.sin_offset[c]);
+        chunk->set_tilt(i, tilt.cb, tilt.sb, tilt.tb, st.cos_offset[c], st.sin_offset[c]);
         st.load(c, *chunk, i);
       }
       add_planes(*chunk, st.sectors, first, count, upper, lower, cells, c0, n);
@@ -327,19 +335,14 @@ void SkyViewSums::add(int first, int count, const float* upper, const float* low
 
 SkyViewProducts SkyViewSums::finish(double radius, EdgeMode edge) const {
   const State& st = *s_;
-  if (st.next != st.directions) throw Error("sky-view sums: not every direction was added (internal error)");
+  if (st.next != st.sectors.n) throw Error("sky-view sums: not every direction was added (internal error)");
   const Window& window = st.window;
   SkyViewProducts p = empty_products(window);
   std::vector<unsigned char> leaves(st.svf.size(), 0);
   tbb::parallel_for(0, window.rows, [&](int wr) {
-    auto chunk = std::make_unique<SkySums>();
-    for (int c0 = 0; c0 < window.cols; c0 += kChunk) {
-      const int count = std::min(kChunk, window.cols - c0);
-      const std::size_t first = static_cast<std::size_t>(wr) * window.cols + c0;
-      for (int i = 0; i < count; ++i) st.load(first + i, *chunk, i);
-      for (int i = 0; i < count; ++i)
-        write_cell(st.terrain, window, c0 + i, wr, radius, edge, st.directions, *chunk, i, st.lower, p,
-                   leaves[first + i]);
+    for (int wc = 0; wc < window.cols; ++wc) {
+      const std::size_t c = static_cast<std::size_t>(wr) * window.cols + wc;
+      write_cell(st.terrain, window, wc, wr, radius, edge, st.sectors.n, st.totals(c), st.lower, p, leaves[c]);
     }
   });
   for (unsigned char l : leaves) p.edge_cells += l;

@@ -609,12 +609,11 @@ class DirectionSweep {
       }
       // Slopes are interpolated in folded heights: the weights sum to one wherever both lines
       // have hulls, and adding 2ct back commutes with the weighted mean.
+      // The offset is below one, so the first line always counts; the second only off the line.
       double far = 0.0, weight = 0.0;
-      previous.slope[0] = previous.slope[1] = kInf;  // not searched: unknown
-      if (fu < 1.0) {
-        previous.slope[0] = h0.n > 0 ? h0.tangent_slope(p, 0) : -kInf;
-        if (h0.n > 0) far += (1.0 - fu) * previous.slope[0], weight += 1.0 - fu;
-      }
+      previous.slope[0] = h0.n > 0 ? h0.tangent_slope(p, 0) : -kInf;
+      if (h0.n > 0) far += (1.0 - fu) * previous.slope[0], weight += 1.0 - fu;
+      previous.slope[1] = kInf;  // not searched: unknown
       if (fu > 0.0) {
         previous.slope[1] = h1.n > 0 ? h1.tangent_slope(p, 1) : -kInf;
         if (h1.n > 0) far += fu * previous.slope[1], weight += fu;
