@@ -20,24 +20,12 @@ Runner setup(CLI::App& app) {
     HorizonJobOptions opts = *o;
     opts.params.lower = true;  // negative openness needs the lowest angles
     HorizonJob job = prepare_horizon_job(opts, "svf");
-    // Every direction's planes cost 8 bytes per cell (horizon and lowest angle), the running sums
-    // of the products SkyViewSums::kBytesPerCell. From twice that on (16 directions), a method that
-    // finds one direction at a time (the sweep) hands them over as they are done, and they are
-    // summed then: the same bits (tested), 41% less memory at 16 directions and 77% at 64 on a
-    // 2000 x 2000 city, for about 10% more compute (bench_horizon) and no more wall time.
-    const Window whole = Window::whole(job.terrain);
+    // Horizons are held a part at a time (compute_sky_view), so memory does not grow with the
+    // number of directions.
     SkyViewProducts p;
-    if (job.engine->streams_directions() && 8.0 * job.params.directions >= 2.0 * SkyViewSums::kBytesPerCell) {
-      SkyViewSums sums(job.terrain, whole, job.params.directions);
-      const DirectionBatchSink take = [&](int first, int count, const float* upper, const float* lower) {
-        sums.add(first, count, upper, lower, job.field.rotation);
-      };
-      compute_horizons(job, &take);
-      p = sums.finish(job.engine->radius(), job.edge);
-    } else {
-      compute_horizons(job);
-      p = sky_view_products(job.terrain, whole, job.field, job.engine->radius(), job.edge);
-    }
+    with_progress(job, [&](ProgressCounter& progress) {
+      p = compute_sky_view(*job.engine, job.terrain, Window::whole(job.terrain), job.edge, progress);
+    });
     job.metadata["EDGE_CELLS"] = std::to_string(p.edge_cells);
     if (p.edge_cells > 0) {
       job.metadata["EDGE_NOTE"] = std::to_string(p.edge_cells) + " cells have search circles leaving the raster; " +
@@ -68,14 +56,14 @@ Runner setup(CLI::App& app) {
          "degree",
          p.openness_negative.data(),
          {{"DEFINITION", "mean nadir angle of the lowest terrain (Yokoyama 2002)"}}}};
-    if (!job.field.svf_direct.empty()) {
+    if (!p.svf_montecarlo.values().empty()) {
       bands.push_back({"svf_montecarlo",
                        "1",
-                       job.field.svf_direct.data(),
+                       p.svf_montecarlo.data(),
                        {{"DEFINITION", "fraction of stratified cosine-weighted rays that reach the sky"}}});
       bands.push_back({"svf_montecarlo_stderr",
                        "1",
-                       job.field.svf_stderr.data(),
+                       p.svf_montecarlo_stderr.data(),
                        {{"DEFINITION", "binomial standard error of svf_montecarlo (an upper bound)"}}});
     }
     write_bands(o->output, w, h, job.terrain.georef, bands, wo);

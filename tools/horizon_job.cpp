@@ -102,14 +102,17 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   return job;
 }
 
-void compute_horizons(HorizonJob& job, const DirectionBatchSink* take) {
+void with_progress(const HorizonJob& job, const std::function<void(ProgressCounter&)>& work) {
   ProgressCounter progress;
   progress.set_total(static_cast<std::uint64_t>(job.terrain.width()) * job.terrain.height());
   ProgressReporter reporter(progress, job.quiet);
-  if (take)
-    job.engine->compute_directions(job.terrain, Window::whole(job.terrain), job.field, progress, *take);
-  else
+  work(progress);
+}
+
+void compute_horizons(HorizonJob& job) {
+  with_progress(job, [&](ProgressCounter& progress) {
     job.engine->compute(job.terrain, Window::whole(job.terrain), job.field, progress);
+  });
 }
 
 HorizonJob run_horizon_job(const HorizonJobOptions& o, const std::string& command) {

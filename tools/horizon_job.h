@@ -1,6 +1,7 @@
 #pragma once
 // What `skyview horizon` and `skyview svf` share: the input, the horizon method and its
 // parameters, and the run that turns a raster into a HorizonField with progress.
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -38,9 +39,11 @@ struct HorizonJob {
 // Reads the input, builds the engine and records the run's parameters; computes nothing yet.
 HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& command);
 
-// Computes the job's horizons with progress on stderr: into job.field, or (with `take`) handed
-// over direction by direction (HorizonEngine::compute_directions).
-void compute_horizons(HorizonJob& job, const DirectionBatchSink* take = nullptr);
+// Runs `work` with progress over the job's cells on stderr (unless the job is quiet).
+void with_progress(const HorizonJob& job, const std::function<void(ProgressCounter&)>& work);
+
+// Computes the job's horizons into job.field, with progress.
+void compute_horizons(HorizonJob& job);
 
 // prepare_horizon_job, then compute_horizons into job.field.
 HorizonJob run_horizon_job(const HorizonJobOptions& o, const std::string& command);

@@ -1,6 +1,7 @@
 #pragma once
 // A dense row-major 2-D array; the raster type every algorithm works on.
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace skyview {
@@ -11,6 +12,10 @@ class Grid {
   Grid() = default;
   Grid(int width, int height, T fill = T{})
       : width_(width), height_(height), data_(static_cast<std::size_t>(width) * height, fill) {}
+  // Takes over `values`, row-major, which must hold width * height of them.
+  Grid(int width, int height, std::vector<T>&& values) : width_(width), height_(height), data_(std::move(values)) {
+    data_.resize(static_cast<std::size_t>(width) * height);
+  }
 
   int width() const { return width_; }
   int height() const { return height_; }

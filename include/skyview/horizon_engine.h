@@ -65,6 +65,8 @@ class HorizonEngine {
   virtual std::map<std::string, std::string> describe() const = 0;
   // Effective search radius in metres (infinity when unlimited).
   virtual double radius() const = 0;
+  // The parameters it runs with, the method's defaults filled in.
+  virtual const HorizonParams& params() const = 0;
   // Fills `out` for the cells of `window`; terrain outside the window (the halo) occludes.
   virtual void compute(const Terrain& terrain, const Window& window, HorizonField& out,
                        ProgressCounter& progress) const = 0;

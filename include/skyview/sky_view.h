@@ -30,6 +30,9 @@ enum class EdgeMode { open, nodata };
 struct SkyViewProducts {
   Grid<float> svf, svf_surface, sky_visibility, openness_positive, openness_negative;
   std::int64_t edge_cells = 0;  // cells whose search circle leaves the raster
+  // The Monte-Carlo svf and its standard error where the method estimates svf directly (raycast
+  // with rays, HorizonField::svf_direct); empty otherwise.
+  Grid<float> svf_montecarlo, svf_montecarlo_stderr;
 };
 
 // True where the ground circle of `radius` metres around the cell leaves the full raster.
@@ -62,5 +65,18 @@ class SkyViewSums {
 // NaN when the field has no lower horizons. The same sums as SkyViewSums, in one batch.
 SkyViewProducts sky_view_products(const Terrain& terrain, const Window& window, const HorizonField& field,
                                   double radius, EdgeMode edge);
+
+// Horizons that compute_sky_view holds at a time, in bytes, unless told otherwise.
+constexpr std::size_t kSkyViewHorizonBytes = std::size_t{256} << 20;
+
+// The products of `window`'s cells straight from a method, holding about `horizon_bytes` of
+// horizons at most, so that memory does not grow with the number of directions: a method that
+// finds one direction at a time (the sweep) hands them over as they are done, summed by
+// SkyViewSums (from 16 directions on, where that keeps less than the horizons would); the others
+// compute the window in blocks of rows. The same bits as sky_view_products over the whole
+// field (tested). Progress advances by the window's cells.
+SkyViewProducts compute_sky_view(const HorizonEngine& engine, const Terrain& terrain, const Window& window,
+                                 EdgeMode edge, ProgressCounter& progress,
+                                 std::size_t horizon_bytes = kSkyViewHorizonBytes);
 
 }  // namespace skyview

@@ -54,6 +54,7 @@ class MarchEngine final : public HorizonEngine {
         {"METHOD", "march"}, {"DIRECTIONS", std::to_string(p_.directions)}, {"RADIUS_M", std::to_string(p_.radius)}};
   }
   double radius() const override { return p_.radius; }
+  const HorizonParams& params() const override { return p_; }
   void compute(const Terrain& terrain, const Window& window, HorizonField& out,
                ProgressCounter& progress) const override {
     ScanSettings s = scan_settings(p_, terrain);

@@ -187,6 +187,7 @@ class RaycastEngine final : public HorizonEngine {
             {"BISECTION_STEPS", std::to_string(kBisections)}};
   }
   double radius() const override { return p_.radius == 0.0 ? std::numeric_limits<double>::infinity() : p_.radius; }
+  const HorizonParams& params() const override { return p_; }
 
   void compute(const Terrain& terrain, const Window& window, HorizonField& out,
                ProgressCounter& progress) const override {

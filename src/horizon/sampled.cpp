@@ -54,6 +54,7 @@ class SampledEngine final : public HorizonEngine {
             {"SAMPLE_SPACING", "quadratic: d_j = R*((j+1)/S)^2"}};
   }
   double radius() const override { return p_.radius; }
+  const HorizonParams& params() const override { return p_; }
   void compute(const Terrain& terrain, const Window& window, HorizonField& out,
                ProgressCounter& progress) const override {
     ScanSettings s = scan_settings(p_, terrain);

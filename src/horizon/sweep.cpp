@@ -700,13 +700,19 @@ class SweepEngine final : public HorizonEngine {
             {"REFRACTION", std::to_string(p_.refraction)}};
   }
   double radius() const override { return p_.radius > 0 ? p_.radius : std::numeric_limits<double>::infinity(); }
+  const HorizonParams& params() const override { return p_; }
+  // Direction k's share of progress over `cells`: the shares add up to all of them.
+  std::uint64_t direction_share(std::uint64_t cells, int k) const {
+    const std::uint64_t n = static_cast<std::uint64_t>(p_.directions);
+    return cells * (k + 1) / n - cells * k / n;
+  }
   void compute(const Terrain& terrain, const Window& window, HorizonField& out,
                ProgressCounter& progress) const override {
     out.resize(window.cols, window.rows, p_.directions, p_.lower);
     const Inputs in = inputs(terrain);
     tbb::parallel_for(0, p_.directions, [&](int k) {
       sweep(terrain, in, window, k, out.upper_plane(k), p_.lower ? out.lower_plane(k) : nullptr);
-      progress.advance(window.cells() / std::max(1, p_.directions));
+      progress.advance(direction_share(window.cells(), k));
     });
   }
 
@@ -741,7 +747,7 @@ class SweepEngine final : public HorizonEngine {
         if (p_.lower) planes.lower.reset(new float[cells]);
       }
       sweep(terrain, in, window, k, planes.upper.get(), planes.lower.get());
-      progress.advance(cells / std::max(1, p_.directions));
+      progress.advance(direction_share(cells, k));
       std::unique_lock<std::mutex> lock(mutex);
       finished.emplace(k, std::move(planes));
       if (handing) return;  // the worker handing over will find it

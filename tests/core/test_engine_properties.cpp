@@ -356,6 +356,36 @@ TEST(SweepHulls, TheLowestAngleIsTheHorizonOfTheNegatedTerrain) {
   }
 }
 
+// Compares every product of two runs over the same window bit for bit (NaN where the other is
+// NaN); returns the number of finite values compared.
+std::size_t expect_same_products(const SkyViewProducts& got, const SkyViewProducts& expected, const std::string& what) {
+  std::size_t compared = 0;
+  EXPECT_EQ(got.edge_cells, expected.edge_cells) << what;
+  for (const auto& [a, b] : {std::pair{&got.svf, &expected.svf},
+                             {&got.svf_surface, &expected.svf_surface},
+                             {&got.sky_visibility, &expected.sky_visibility},
+                             {&got.openness_positive, &expected.openness_positive},
+                             {&got.openness_negative, &expected.openness_negative},
+                             {&got.svf_montecarlo, &expected.svf_montecarlo},
+                             {&got.svf_montecarlo_stderr, &expected.svf_montecarlo_stderr}}) {
+    EXPECT_EQ(a->width(), b->width()) << what;
+    EXPECT_EQ(a->height(), b->height()) << what;
+    if (a->size() != b->size()) return compared;
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const float x = a->values()[i], y = b->values()[i];
+      if (std::isnan(y)) {
+        EXPECT_TRUE(std::isnan(x)) << what << " at " << i;
+        if (!std::isnan(x)) return compared;
+        continue;
+      }
+      EXPECT_EQ(x, y) << what << " at " << i;
+      if (x != y) return compared;
+      ++compared;
+    }
+  }
+  return compared;
+}
+
 // Products summed direction by direction as a method hands them over (what `skyview svf` does past
 // 16 directions) must be the products of the whole field, bit for bit: for the sweep, which holds
 // only the directions in progress, and for a method that computes the whole field first (the
@@ -386,24 +416,54 @@ TEST(SkyViewSums, DirectionByDirectionEqualsTheWholeField) {
       EXPECT_TRUE(rest.upper.empty()) << "the sweep keeps no field";
     }
     const SkyViewProducts got = sums.finish(engine->radius(), EdgeMode::open);
-    std::size_t compared = 0;
-    for (int r = 0; r < t.height(); ++r) {
-      for (int c = 0; c < t.width(); ++c) {
-        for (const auto& [a, b] : {std::pair{&got.svf, &expected.svf},
-                                   {&got.svf_surface, &expected.svf_surface},
-                                   {&got.sky_visibility, &expected.sky_visibility},
-                                   {&got.openness_positive, &expected.openness_positive},
-                                   {&got.openness_negative, &expected.openness_negative}}) {
-          if (std::isnan((*b)(c, r))) {
-            ASSERT_TRUE(std::isnan((*a)(c, r)));
-            continue;
-          }
-          ASSERT_EQ((*a)(c, r), (*b)(c, r)) << method << " at " << c << "," << r;
-          ++compared;
-        }
-      }
+    EXPECT_GT(expect_same_products(got, expected, method), 5u * t.width() * t.height() * 9 / 10);
+  }
+}
+
+// compute_sky_view holds a part of the horizons at a time (blocks of rows, or the sweep's
+// directions as they are done) and must give the products of the whole field bit for bit: with
+// blocks of one row, blocks that do not divide the window and one block, over a window that is
+// not the whole buffer, with nodata, the lowest angles and cells whose search circle leaves the
+// raster; for the ray cast with its Monte-Carlo bands too.
+TEST(ComputeSkyView, PartsGiveTheProductsOfTheWholeField) {
+  Terrain t = small_city_with_nodata();
+  punch_nodata_block(t);
+  struct Case {
+    const char* method;
+    int directions;
+    Window window;
+  };
+  for (const Case& k :
+       {Case{"march", 16, {7, 5, 131, 103}}, Case{"sampled", 16, {7, 5, 131, 103}}, Case{"sweep", 24, {7, 5, 131, 103}},
+        Case{"sweep", 8, {7, 5, 131, 103}}, Case{"raycast", 8, {60, 50, 23, 17}}}) {
+    HorizonParams p = sweep_params(k.directions, "off", 8);
+    const std::string method = k.method;
+    if (method == "march" || method == "sampled") p.radius = 25.0;
+    if (method == "sampled") p.samples = 16, p.seed = 7;
+    p.rays = method == "raycast" ? 16 : 0;
+    const auto engine = make_horizon_engine(method, p);
+    const HorizonField field = run(t, k.window, method, p);
+    // Cells whose search circle leaves the raster get nodata where there is a radius (with the
+    // sweep's unlimited one, that would be every cell).
+    const EdgeMode edge = std::isfinite(engine->radius()) ? EdgeMode::nodata : EdgeMode::open;
+    SkyViewProducts expected = sky_view_products(t, k.window, field, engine->radius(), edge);
+    if (!field.svf_direct.empty()) {
+      expected.svf_montecarlo = Grid<float>(k.window.cols, k.window.rows, std::vector<float>(field.svf_direct));
+      expected.svf_montecarlo_stderr = Grid<float>(k.window.cols, k.window.rows, std::vector<float>(field.svf_stderr));
     }
-    EXPECT_GT(compared, 5u * t.width() * t.height() * 9 / 10);
-    EXPECT_EQ(got.edge_cells, expected.edge_cells);
+    const std::size_t per_row = sizeof(float) * k.window.cols * (2 * k.directions + 3);
+    for (const std::size_t bytes : {std::size_t{1}, per_row * 10 + 7, kSkyViewHorizonBytes}) {
+      const std::string what = method + " with " + std::to_string(k.directions) + " directions, " +
+                               std::to_string(bytes) + " bytes of horizons";
+      ProgressCounter progress;
+      progress.set_total(static_cast<std::uint64_t>(k.window.cells()));
+      const SkyViewProducts got = compute_sky_view(*engine, t, k.window, edge, progress, bytes);
+      EXPECT_GT(expect_same_products(got, expected, what), k.window.cells());
+      EXPECT_EQ(progress.fraction(), 1.0) << what;
+    }
+    if (edge == EdgeMode::nodata) {
+      EXPECT_GT(expected.edge_cells, 0) << "the test needs cells whose search circle leaves the raster";
+    }
+    EXPECT_EQ(expected.svf_montecarlo.size() > 0, method == "raycast");
   }
 }
