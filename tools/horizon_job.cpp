@@ -109,16 +109,4 @@ void with_progress(const HorizonJob& job, const std::function<void(ProgressCount
   work(progress);
 }
 
-void compute_horizons(HorizonJob& job) {
-  with_progress(job, [&](ProgressCounter& progress) {
-    job.engine->compute(job.terrain, Window::whole(job.terrain), job.field, progress);
-  });
-}
-
-HorizonJob run_horizon_job(const HorizonJobOptions& o, const std::string& command) {
-  HorizonJob job = prepare_horizon_job(o, command);
-  compute_horizons(job);
-  return job;
-}
-
 }  // namespace skyview::cli

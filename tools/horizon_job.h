@@ -1,6 +1,6 @@
 #pragma once
 // What `skyview horizon` and `skyview svf` share: the input, the horizon method and its
-// parameters, and the run that turns a raster into a HorizonField with progress.
+// parameters, and progress while they run.
 #include <functional>
 #include <map>
 #include <memory>
@@ -30,7 +30,6 @@ struct HorizonJob {
   Terrain terrain;
   std::unique_ptr<HorizonEngine> engine;
   HorizonParams params;  // as run (--max-error may have chosen them)
-  HorizonField field;
   EdgeMode edge = EdgeMode::open;
   std::map<std::string, std::string> metadata;  // run parameters for the output
   bool quiet = false;
@@ -41,11 +40,5 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
 
 // Runs `work` with progress over the job's cells on stderr (unless the job is quiet).
 void with_progress(const HorizonJob& job, const std::function<void(ProgressCounter&)>& work);
-
-// Computes the job's horizons into job.field, with progress.
-void compute_horizons(HorizonJob& job);
-
-// prepare_horizon_job, then compute_horizons into job.field.
-HorizonJob run_horizon_job(const HorizonJobOptions& o, const std::string& command);
 
 }  // namespace skyview::cli

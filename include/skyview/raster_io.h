@@ -3,6 +3,7 @@
 // atomic: the file is built under a temporary name beside the target and renamed into place,
 // so a failed or interrupted run never leaves a half-written output or clobbers an old one.
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -48,7 +49,27 @@ struct WriteOptions {
   std::map<std::string, std::string> metadata;  // dataset-level (run parameters)
 };
 
+// Writes a float32 raster a band at a time, so that a product of many bands need not be held
+// whole. Nothing appears at `path` until finish(); a writer destroyed before then leaves no file.
 // Throws skyview::Error if `path` exists and !overwrite, or if writing fails.
+class BandWriter {
+ public:
+  BandWriter(const std::string& path, int width, int height, int bands, const GeoReference& georef,
+             const WriteOptions& options);
+  ~BandWriter();
+  BandWriter(const BandWriter&) = delete;
+  BandWriter& operator=(const BandWriter&) = delete;
+  // Band `index` (from 0), in any order.
+  void write(int index, const OutputBand& band);
+  void finish();
+
+ private:
+  struct State;
+  std::unique_ptr<State> s_;
+};
+
+// All bands at once through a BandWriter. Throws skyview::Error if `path` exists and
+// !overwrite, or if writing fails.
 void write_bands(const std::string& path, int width, int height, const GeoReference& georef,
                  const std::vector<OutputBand>& bands, const WriteOptions& options);
 

@@ -154,4 +154,32 @@ TEST_F(CliErrors, HorizonBandsNameTheirAzimuths) {
   EXPECT_NEAR(v, 45.0, 3.0);
 }
 
+// `skyview horizon` writes each band as the method finds it (the sweep hands directions over one at
+// a time): every band must be its direction's horizons, in degrees.
+TEST_F(CliErrors, HorizonBandsAreTheEnginesDirections) {
+  const Terrain t = read_terrain(good, {});
+  for (const char* method : {"sweep", "march"}) {
+    const std::string out = dir + "/h_" + method + ".tif";
+    ASSERT_EQ(
+        run_skyview(std::string("horizon ") + good + " " + out + " --directions 16 --method " + method, dir).exit_code,
+        0);
+    HorizonParams p;
+    p.directions = 16;
+    HorizonField field;
+    ProgressCounter progress;
+    make_horizon_engine(method, p)->compute(t, Window::whole(t), field, progress);
+    GDALDatasetUniquePtr ds(GDALDataset::Open(out.c_str(), GDAL_OF_RASTER));
+    ASSERT_EQ(ds->GetRasterCount(), 16);
+    std::vector<float> band(field.cells());
+    for (int k = 0; k < 16; ++k) {
+      ASSERT_EQ(ds->GetRasterBand(k + 1)->RasterIO(GF_Read, 0, 0, t.width(), t.height(), band.data(), t.width(),
+                                                   t.height(), GDT_Float32, 0, 0),
+                CE_None);
+      for (std::size_t i = 0; i < band.size(); ++i) {
+        ASSERT_EQ(band[i], static_cast<float>(field.upper_at(i, k) * 180.0 / M_PI)) << method << " band " << k;
+      }
+    }
+  }
+}
+
 }  // namespace

@@ -1,0 +1,110 @@
+// BandWriter: bands written one at a time, in any order, appear at the path only when finished;
+// an abandoned writer leaves nothing behind and keeps what was there.
+#include <gdal_priv.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "skyview/error.h"
+#include "test_support.h"
+
+using namespace skyview;
+using namespace skyview::test;
+
+namespace {
+
+constexpr int kW = 7, kH = 5;
+
+// Band b holds b * 100 + cell index, with one NaN cell per band at index b.
+std::vector<float> band_values(int b) {
+  std::vector<float> v(kW * kH);
+  for (int i = 0; i < kW * kH; ++i) v[i] = static_cast<float>(b * 100 + i);
+  v[b] = std::numeric_limits<float>::quiet_NaN();
+  return v;
+}
+
+GeoReference georef() {
+  GeoReference g;
+  g.has_geotransform = true;
+  g.geotransform = {500000, 2, 0, 6400000, 0, -2};
+  g.crs_wkt = wkt_of("EPSG:32633");
+  return g;
+}
+
+std::size_t files_in(const std::string& dir) {
+  return static_cast<std::size_t>(
+      std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()));
+}
+
+class BandWriterFormats : public ::testing::TestWithParam<const char*> {};
+
+// GTiff is written in place band by band; COG only copies a finished dataset (the memory path).
+TEST_P(BandWriterFormats, BandsInAnyOrderAppearWhenFinished) {
+  const std::string dir = temp_dir("bandwriter");
+  const std::string path = dir + "/out.tif";
+  WriteOptions wo;
+  wo.format = GetParam();
+  wo.metadata["RUN"] = "test";
+  {
+    BandWriter out(path, kW, kH, 3, georef(), wo);
+    for (int b : {2, 0, 1}) {
+      const std::vector<float> v = band_values(b);
+      out.write(b, {"band_" + std::to_string(b), "degree", v.data(), {{"INDEX", std::to_string(b)}}});
+    }
+    EXPECT_FALSE(std::filesystem::exists(path)) << "nothing at the path before finish()";
+    out.finish();
+  }
+  EXPECT_EQ(files_in(dir), 1u) << "no temporary file left";
+  GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER));
+  ASSERT_TRUE(ds);
+  ASSERT_EQ(ds->GetRasterCount(), 3);
+  EXPECT_STREQ(ds->GetMetadataItem("RUN"), "test");
+  double gt[6];
+  ASSERT_EQ(ds->GetGeoTransform(gt), CE_None);
+  EXPECT_EQ(gt[0], 500000.0);
+  EXPECT_EQ(gt[5], -2.0);
+  EXPECT_NE(std::string(ds->GetProjectionRef()).find("32633"), std::string::npos);
+  for (int b = 0; b < 3; ++b) {
+    GDALRasterBand* band = ds->GetRasterBand(b + 1);
+    EXPECT_EQ(band->GetDescription(), "band_" + std::to_string(b));
+    EXPECT_STREQ(band->GetUnitType(), "degree");
+    EXPECT_STREQ(band->GetMetadataItem("INDEX"), std::to_string(b).c_str());
+    int has_nodata = 0;
+    EXPECT_EQ(band->GetNoDataValue(&has_nodata), wo.nodata);
+    EXPECT_TRUE(has_nodata);
+    std::vector<float> got(kW * kH);
+    ASSERT_EQ(band->RasterIO(GF_Read, 0, 0, kW, kH, got.data(), kW, kH, GDT_Float32, 0, 0), CE_None);
+    const std::vector<float> want = band_values(b);
+    for (int i = 0; i < kW * kH; ++i) {
+      EXPECT_EQ(got[i], std::isnan(want[i]) ? wo.nodata : want[i]) << "band " << b << " cell " << i;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Formats, BandWriterFormats, ::testing::Values("GTiff", "COG"));
+
+TEST(BandWriter, AbandonedLeavesNothingAndKeepsTheOldOutput) {
+  const std::string dir = temp_dir("bandwriter");
+  const std::string path = dir + "/out.tif";
+  WriteOptions wo;
+  const std::vector<float> v = band_values(0);
+  {
+    BandWriter out(path, kW, kH, 2, georef(), wo);
+    out.write(0, {"a", "1", v.data(), {}});
+  }  // an error between bands: never finished
+  EXPECT_EQ(files_in(dir), 0u);
+
+  std::ofstream(path) << "an older output";
+  EXPECT_THROW(BandWriter(path, kW, kH, 1, georef(), wo), skyview::Error) << "exists, and no overwrite";
+  wo.overwrite = true;
+  {
+    BandWriter out(path, kW, kH, 1, georef(), wo);
+    out.write(0, {"a", "1", v.data(), {}});
+  }
+  EXPECT_EQ(files_in(dir), 1u);
+  std::ifstream in(path);
+  std::string old((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(old, "an older output");
+}
+
+}  // namespace
