@@ -255,6 +255,14 @@ void set_georeference(GDALDataset* ds, const GeoReference& georef) {
   if (!georef.crs_wkt.empty()) ds->SetProjection(georef.crs_wkt.c_str());
 }
 
+// The band at `index`, or an internal error.
+GDALRasterBand* band_of(GDALDataset* ds, int index, const std::string& path) {
+  if (!ds || index < 0 || index >= ds->GetRasterCount()) {
+    throw Error("band " + std::to_string(index + 1) + " of '" + path + "' cannot be written (internal error)");
+  }
+  return ds->GetRasterBand(index + 1);
+}
+
 }  // namespace
 
 // Formats that GDAL can create band by band are written in place under the temporary name; the
@@ -296,7 +304,6 @@ BandWriter::BandWriter(const std::string& path, int width, int height, int bands
   }
   set_georeference(s.ds.get(), georef);
   for (const auto& [k, v] : options.metadata) s.ds->SetMetadataItem(k.c_str(), v.c_str());
-  s.buffer.resize(static_cast<std::size_t>(width) * height);
 }
 
 BandWriter::~BandWriter() {
@@ -306,22 +313,39 @@ BandWriter::~BandWriter() {
   if (on_disk && path_exists(s_->tmp)) s_->driver->Delete(s_->tmp.c_str());
 }
 
-void BandWriter::write(int index, const OutputBand& src) {
+void BandWriter::write(int index, const OutputBand& band) {
+  write_rows(index, 0, s_->height, band.values);
+  describe(index, band);
+}
+
+void BandWriter::write_rows(int index, int row0, int rows, const float* values) {
   State& s = *s_;
-  if (!s.ds || index < 0 || index >= s.ds->GetRasterCount()) {
-    throw Error("band " + std::to_string(index + 1) + " of '" + s.path + "' cannot be written (internal error)");
+  GDALRasterBand* band = band_of(s.ds.get(), index, s.path);
+  if (row0 < 0 || rows < 0 || row0 + rows > s.height) {
+    throw Error("rows " + std::to_string(row0) + " to " + std::to_string(row0 + rows) + " of '" + s.path +
+                "' are outside it (internal error)");
   }
-  for (std::size_t i = 0; i < s.buffer.size(); ++i)
-    s.buffer[i] = std::isnan(src.values[i]) ? s.options.nodata : src.values[i];
-  GDALRasterBand* band = s.ds->GetRasterBand(index + 1);
-  if (band->RasterIO(GF_Write, 0, 0, s.width, s.height, s.buffer.data(), s.width, s.height, GDT_Float32, 0, 0) !=
-      CE_None) {
+  const std::size_t n = static_cast<std::size_t>(s.width) * rows;
+  s.buffer.resize(std::max(s.buffer.size(), n));
+  for (std::size_t i = 0; i < n; ++i) s.buffer[i] = std::isnan(values[i]) ? s.options.nodata : values[i];
+  if (band->RasterIO(GF_Write, 0, row0, s.width, rows, s.buffer.data(), s.width, rows, GDT_Float32, 0, 0) != CE_None) {
     throw Error("cannot write band " + std::to_string(index + 1) + " of '" + s.path + "': " + last_gdal_error());
   }
-  band->SetNoDataValue(s.options.nodata);
+}
+
+void BandWriter::describe(int index, const OutputBand& src) {
+  GDALRasterBand* band = band_of(s_->ds.get(), index, s_->path);
+  band->SetNoDataValue(s_->options.nodata);
   band->SetDescription(src.description.c_str());
   band->SetUnitType(src.unit.c_str());
   for (const auto& [k, v] : src.metadata) band->SetMetadataItem(k.c_str(), v.c_str());
+}
+
+int BandWriter::block_rows() const {
+  if (!s_->ds || !s_->direct) return 1;
+  int x = 0, y = 0;
+  s_->ds->GetRasterBand(1)->GetBlockSize(&x, &y);
+  return std::max(1, y);
 }
 
 void BandWriter::finish() {

@@ -14,51 +14,42 @@ void copy_rows(const Grid<float>& from, Grid<float>& to, int r0) {
   std::memcpy(to.data() + to.index(0, r0), from.data(), sizeof(float) * from.size());
 }
 
-// Methods that find all of a cell's directions together: the window in blocks of whole rows,
-// each computed and turned into products before the next. A cell's horizons do not depend on
-// the window it is computed in (the rest of the buffer is its halo), so the blocks give the
-// whole window's bits.
+// Methods that find all of a cell's directions together go by blocks of whole rows, each turned
+// into products before the next (compute_by_row_blocks).
 SkyViewProducts by_row_blocks(const HorizonEngine& engine, const Terrain& terrain, const Window& window, EdgeMode edge,
                               ProgressCounter& progress, std::size_t horizon_bytes) {
-  const HorizonParams& params = engine.params();
-  // Per cell: the planes, and at most a rotation and two Monte-Carlo values besides.
-  const std::size_t per_row =
-      static_cast<std::size_t>(window.cols) *
-      (sizeof(float) * (static_cast<std::size_t>(params.directions) * (params.lower ? 2 : 1) + 3));
-  const int block_rows =
-      static_cast<int>(std::clamp<std::size_t>(horizon_bytes / std::max<std::size_t>(per_row, 1), 1, window.rows));
   SkyViewProducts out;
-  for (int r0 = 0; r0 < window.rows; r0 += block_rows) {
-    const Window block{window.col0, window.row0 + r0, window.cols, std::min(block_rows, window.rows - r0)};
-    HorizonField field;
-    engine.compute(terrain, block, field, progress);
-    SkyViewProducts part = sky_view_products(terrain, block, field, engine.radius(), edge);
-    if (block.rows == window.rows) {  // one block: nothing to copy
-      if (!field.svf_direct.empty()) {
-        part.svf_montecarlo = Grid<float>(window.cols, window.rows, std::move(field.svf_direct));
-        part.svf_montecarlo_stderr = Grid<float>(window.cols, window.rows, std::move(field.svf_stderr));
-      }
-      return part;
-    }
-    if (r0 == 0) {
-      out.svf = out.svf_surface = out.sky_visibility = out.openness_positive = out.openness_negative =
-          Grid<float>(window.cols, window.rows);
-      if (!field.svf_direct.empty())
-        out.svf_montecarlo = out.svf_montecarlo_stderr = Grid<float>(window.cols, window.rows);
-    }
-    copy_rows(part.svf, out.svf, r0);
-    copy_rows(part.svf_surface, out.svf_surface, r0);
-    copy_rows(part.sky_visibility, out.sky_visibility, r0);
-    copy_rows(part.openness_positive, out.openness_positive, r0);
-    copy_rows(part.openness_negative, out.openness_negative, r0);
-    out.edge_cells += part.edge_cells;
-    if (!field.svf_direct.empty()) {
-      std::memcpy(out.svf_montecarlo.data() + out.svf_montecarlo.index(0, r0), field.svf_direct.data(),
-                  sizeof(float) * field.svf_direct.size());
-      std::memcpy(out.svf_montecarlo_stderr.data() + out.svf_montecarlo_stderr.index(0, r0), field.svf_stderr.data(),
-                  sizeof(float) * field.svf_stderr.size());
-    }
-  }
+  compute_by_row_blocks(
+      engine, terrain, window, progress, horizon_bytes, 1, [&](const Window& block, HorizonField& field) {
+        SkyViewProducts part = sky_view_products(terrain, block, field, engine.radius(), edge);
+        if (block.rows == window.rows) {  // one block: nothing to copy
+          out = std::move(part);
+          if (!field.svf_direct.empty()) {
+            out.svf_montecarlo = Grid<float>(window.cols, window.rows, std::move(field.svf_direct));
+            out.svf_montecarlo_stderr = Grid<float>(window.cols, window.rows, std::move(field.svf_stderr));
+          }
+          return;
+        }
+        const int r0 = block.row0 - window.row0;
+        if (r0 == 0) {
+          out.svf = out.svf_surface = out.sky_visibility = out.openness_positive = out.openness_negative =
+              Grid<float>(window.cols, window.rows);
+          if (!field.svf_direct.empty())
+            out.svf_montecarlo = out.svf_montecarlo_stderr = Grid<float>(window.cols, window.rows);
+        }
+        copy_rows(part.svf, out.svf, r0);
+        copy_rows(part.svf_surface, out.svf_surface, r0);
+        copy_rows(part.sky_visibility, out.sky_visibility, r0);
+        copy_rows(part.openness_positive, out.openness_positive, r0);
+        copy_rows(part.openness_negative, out.openness_negative, r0);
+        out.edge_cells += part.edge_cells;
+        if (!field.svf_direct.empty()) {
+          std::memcpy(out.svf_montecarlo.data() + out.svf_montecarlo.index(0, r0), field.svf_direct.data(),
+                      sizeof(float) * field.svf_direct.size());
+          std::memcpy(out.svf_montecarlo_stderr.data() + out.svf_montecarlo_stderr.index(0, r0),
+                      field.svf_stderr.data(), sizeof(float) * field.svf_stderr.size());
+        }
+      });
   return out;
 }
 

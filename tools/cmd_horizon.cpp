@@ -35,30 +35,41 @@ Runner setup(CLI::App& app) {
     if (job.engine->name() == "sampled") {
       wo.metadata["AZIMUTH_NOTE"] = "sampled rotates each cell's direction set randomly within +-half a sector";
     }
-    // Bands are written as the directions are found: the sweep, which finds one at a time, holds
-    // only those in progress, so memory does not grow with the number of directions.
+    // Bands are written as the method finds them: the sweep's directions one at a time (only those
+    // in progress are held), the other methods' in blocks of whole rows, a multiple of the
+    // output's tile height so that each tile is compressed once. Memory does not grow with the
+    // number of directions.
     BandWriter out(o->output, w, h, n, job.terrain.georef, wo);
-    std::vector<float> degrees(blank.size());
-    auto write_direction = [&](int k, const float* radians) {
-      for (std::size_t i = 0; i < degrees.size(); ++i) {
-        degrees[i] = blank[i] ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(radians[i] * 180.0 / M_PI);
-      }
+    for (int k = 0; k < n; ++k) {
       std::ostringstream name, az;
       az << 360.0 * k / n;
       name << "horizon_azimuth_" << az.str();
-      out.write(k, {name.str(), "degree", degrees.data(), {{"AZIMUTH_DEG", az.str()}}});
+      out.describe(k, {name.str(), "degree", nullptr, {{"AZIMUTH_DEG", az.str()}}});
+    }
+    std::vector<float> degrees;
+    // Rows [row0, row0 + rows) of direction k from its plane of radians over those rows.
+    auto write_rows = [&](int k, int row0, int rows, const float* radians) {
+      const std::size_t first = static_cast<std::size_t>(row0) * w, count = static_cast<std::size_t>(rows) * w;
+      degrees.resize(count);
+      for (std::size_t i = 0; i < count; ++i) {
+        degrees[i] =
+            blank[first + i] ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(radians[i] * 180.0 / M_PI);
+      }
+      out.write_rows(k, row0, rows, degrees.data());
     };
-    HorizonField field;
     with_progress(job, [&](ProgressCounter& progress) {
       if (job.engine->streams_directions()) {
-        job.engine->compute_directions(job.terrain, whole, field, progress,
+        HorizonField rest;
+        job.engine->compute_directions(job.terrain, whole, rest, progress,
                                        [&](int first, int count, const float* upper, const float*) {
                                          for (int j = 0; j < count; ++j)
-                                           write_direction(first + j, upper + whole.cells() * j);
+                                           write_rows(first + j, 0, h, upper + whole.cells() * j);
                                        });
       } else {
-        job.engine->compute(job.terrain, whole, field, progress);
-        for (int k = 0; k < n; ++k) write_direction(k, field.upper_plane(k));
+        compute_by_row_blocks(*job.engine, job.terrain, whole, progress, kHorizonBlockBytes, out.block_rows(),
+                              [&](const Window& block, HorizonField& field) {
+                                for (int k = 0; k < n; ++k) write_rows(k, block.row0, block.rows, field.upper_plane(k));
+                              });
       }
     });
     out.finish();

@@ -81,6 +81,22 @@ class HorizonEngine {
   virtual bool streams_directions() const { return false; }
 };
 
+// Horizons held at a time, in bytes, by what goes by blocks of rows (compute_by_row_blocks).
+constexpr std::size_t kHorizonBlockBytes = std::size_t{256} << 20;
+
+// A block of whole rows of a window and its horizons (compute_by_row_blocks).
+using RowBlockSink = std::function<void(const Window& block, HorizonField& field)>;
+
+// Computes `window` in blocks of whole rows, each holding about `horizon_bytes` of horizons (and a
+// multiple of `row_multiple` rows, at least one), and hands each to `take` before computing the
+// next, so that memory does not grow with the number of directions. For methods that find all of
+// a cell's directions together: a cell's horizons do not depend on the window it is computed in
+// (the rest of the buffer is its halo), so the blocks hold the whole window's bits. (A sweep walks
+// the whole buffer for any window: use compute_directions.)
+void compute_by_row_blocks(const HorizonEngine& engine, const Terrain& terrain, const Window& window,
+                           ProgressCounter& progress, std::size_t horizon_bytes, int row_multiple,
+                           const RowBlockSink& take);
+
 // Names accepted by --method, in the order the docs list them.
 std::vector<std::string> horizon_method_names();
 // Throws skyview::Error for an unknown name or invalid parameters.

@@ -61,6 +61,12 @@ class BandWriter {
   BandWriter& operator=(const BandWriter&) = delete;
   // Band `index` (from 0), in any order.
   void write(int index, const OutputBand& band);
+  // Or a band in parts: rows [row0, row0 + rows) from `values` (rows x width, NaN = nodata), and
+  // the band's description, unit and metadata (its values unused).
+  void write_rows(int index, int row0, int rows, const float* values);
+  void describe(int index, const OutputBand& band);
+  // Rows of the format's blocks (tiles or strips): parts in multiples of them are compressed once.
+  int block_rows() const;
   void finish();
 
  private:

@@ -66,9 +66,6 @@ class SkyViewSums {
 SkyViewProducts sky_view_products(const Terrain& terrain, const Window& window, const HorizonField& field,
                                   double radius, EdgeMode edge);
 
-// Horizons that compute_sky_view holds at a time, in bytes, unless told otherwise.
-constexpr std::size_t kSkyViewHorizonBytes = std::size_t{256} << 20;
-
 // The products of `window`'s cells straight from a method, holding about `horizon_bytes` of
 // horizons at most, so that memory does not grow with the number of directions: a method that
 // finds one direction at a time (the sweep) hands them over as they are done, summed by
@@ -77,6 +74,6 @@ constexpr std::size_t kSkyViewHorizonBytes = std::size_t{256} << 20;
 // field (tested). Progress advances by the window's cells.
 SkyViewProducts compute_sky_view(const HorizonEngine& engine, const Terrain& terrain, const Window& window,
                                  EdgeMode edge, ProgressCounter& progress,
-                                 std::size_t horizon_bytes = kSkyViewHorizonBytes);
+                                 std::size_t horizon_bytes = kHorizonBlockBytes);
 
 }  // namespace skyview

@@ -1,5 +1,6 @@
 #include "skyview/horizon_engine.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -28,6 +29,25 @@ void HorizonEngine::compute_directions(const Terrain& terrain, const Window& win
                                        ProgressCounter& progress, const DirectionBatchSink& take) const {
   compute(terrain, window, out, progress);
   take(0, out.directions, out.upper.data(), out.lower.empty() ? nullptr : out.lower.data());
+}
+
+void compute_by_row_blocks(const HorizonEngine& engine, const Terrain& terrain, const Window& window,
+                           ProgressCounter& progress, std::size_t horizon_bytes, int row_multiple,
+                           const RowBlockSink& take) {
+  const HorizonParams& params = engine.params();
+  // Per cell: the planes, and at most a rotation and two Monte-Carlo values besides.
+  const std::size_t per_cell =
+      sizeof(float) * (static_cast<std::size_t>(params.directions) * (params.lower ? 2 : 1) + 3);
+  const std::size_t per_row = std::max<std::size_t>(1, per_cell * static_cast<std::size_t>(window.cols));
+  const std::size_t multiple = static_cast<std::size_t>(std::max(1, row_multiple));
+  const std::size_t rows = std::max<std::size_t>(1, horizon_bytes / per_row / multiple) * multiple;
+  const int block_rows = static_cast<int>(std::min<std::size_t>(rows, static_cast<std::size_t>(window.rows)));
+  for (int r0 = 0; r0 < window.rows; r0 += block_rows) {
+    const Window block{window.col0, window.row0 + r0, window.cols, std::min(block_rows, window.rows - r0)};
+    HorizonField field;
+    engine.compute(terrain, block, field, progress);
+    take(block, field);
+  }
 }
 
 std::vector<std::string> horizon_method_names() { return {"sampled", "march", "sweep", "raycast"}; }

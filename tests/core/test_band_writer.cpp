@@ -83,6 +83,29 @@ TEST_P(BandWriterFormats, BandsInAnyOrderAppearWhenFinished) {
 
 INSTANTIATE_TEST_SUITE_P(Formats, BandWriterFormats, ::testing::Values("GTiff", "COG"));
 
+// A band written in parts of rows (what `skyview horizon` does by blocks) equals the band whole.
+TEST(BandWriter, BandsInPartsOfRows) {
+  const std::string dir = temp_dir("bandwriter");
+  const std::string path = dir + "/out.tif";
+  WriteOptions wo;
+  const std::vector<float> v = band_values(1);
+  {
+    BandWriter out(path, kW, kH, 1, georef(), wo);
+    EXPECT_EQ(out.block_rows(), 256) << "GeoTIFFs are tiled 256 x 256";
+    out.write_rows(0, 3, 2, v.data() + 3 * kW);
+    out.write_rows(0, 0, 3, v.data());
+    EXPECT_THROW(out.write_rows(0, 4, 2, v.data()), skyview::Error) << "past the last row";
+    out.describe(0, {"parts", "degree", nullptr, {}});
+    out.finish();
+  }
+  GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER));
+  ASSERT_TRUE(ds);
+  EXPECT_STREQ(ds->GetRasterBand(1)->GetDescription(), "parts");
+  std::vector<float> got(kW * kH);
+  ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, kW, kH, got.data(), kW, kH, GDT_Float32, 0, 0), CE_None);
+  for (int i = 0; i < kW * kH; ++i) EXPECT_EQ(got[i], std::isnan(v[i]) ? wo.nodata : v[i]) << i;
+}
+
 TEST(BandWriter, AbandonedLeavesNothingAndKeepsTheOldOutput) {
   const std::string dir = temp_dir("bandwriter");
   const std::string path = dir + "/out.tif";

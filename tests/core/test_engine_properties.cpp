@@ -452,7 +452,7 @@ TEST(ComputeSkyView, PartsGiveTheProductsOfTheWholeField) {
       expected.svf_montecarlo_stderr = Grid<float>(k.window.cols, k.window.rows, std::vector<float>(field.svf_stderr));
     }
     const std::size_t per_row = sizeof(float) * k.window.cols * (2 * k.directions + 3);
-    for (const std::size_t bytes : {std::size_t{1}, per_row * 10 + 7, kSkyViewHorizonBytes}) {
+    for (const std::size_t bytes : {std::size_t{1}, per_row * 10 + 7, kHorizonBlockBytes}) {
       const std::string what = method + " with " + std::to_string(k.directions) + " directions, " +
                                std::to_string(bytes) + " bytes of horizons";
       ProgressCounter progress;
@@ -465,5 +465,40 @@ TEST(ComputeSkyView, PartsGiveTheProductsOfTheWholeField) {
       EXPECT_GT(expected.edge_cells, 0) << "the test needs cells whose search circle leaves the raster";
     }
     EXPECT_EQ(expected.svf_montecarlo.size() > 0, method == "raycast");
+  }
+}
+
+// Blocks of rows tile the window in order, in multiples of the rows asked for (the last one
+// shorter), and hold the whole window's horizons bit for bit.
+TEST(ComputeByRowBlocks, BlocksTileTheWindowAndHoldItsHorizons) {
+  const Terrain t = small_city_with_nodata();
+  const Window window{7, 5, 131, 103};
+  HorizonParams p;
+  p.directions = 8;
+  p.radius = 25.0;
+  const auto engine = make_horizon_engine("march", p);
+  const HorizonField whole = run(t, window, "march", p);
+  const std::size_t per_row = sizeof(float) * window.cols * (p.directions + 3);
+  for (const auto& [bytes, multiple, expected_rows] :
+       {std::tuple{std::size_t{1}, 1, 1}, {std::size_t{1}, 4, 4}, {per_row * 9, 4, 8}, {per_row * 1000, 4, 103}}) {
+    ProgressCounter progress;
+    int next_row = window.row0;
+    compute_by_row_blocks(*engine, t, window, progress, bytes, multiple, [&](const Window& block, HorizonField& f) {
+      ASSERT_EQ(block.row0, next_row);
+      ASSERT_EQ(block.col0, window.col0);
+      ASSERT_EQ(block.cols, window.cols);
+      ASSERT_EQ(block.rows, std::min(expected_rows, window.row0 + window.rows - block.row0));
+      next_row += block.rows;
+      for (int k = 0; k < p.directions; ++k) {
+        for (int r = 0; r < block.rows; ++r) {
+          for (int c = 0; c < block.cols; ++c) {
+            const float a = f.upper_at(f.cell(c, r), k);
+            const float b = whole.upper_at(whole.cell(c, block.row0 - window.row0 + r), k);
+            ASSERT_TRUE(a == b || (std::isnan(a) && std::isnan(b))) << "direction " << k << " at " << c << "," << r;
+          }
+        }
+      }
+    });
+    EXPECT_EQ(next_row, window.row0 + window.rows);
   }
 }
