@@ -25,6 +25,21 @@ std::vector<std::string> gdal_style_arguments(int argc, char** argv) {
   return args;
 }
 
+// Errors are one line: GDAL's own messages (quoted in ours) may break lines.
+std::string one_line(const char* message) {
+  std::string out;
+  for (const char* c = message; *c; ++c) {
+    const bool space = *c == '\n' || *c == '\r' || *c == '\t' || *c == ' ';
+    if (space) {
+      if (!out.empty() && out.back() != ' ') out += ' ';
+    } else {
+      out += *c;
+    }
+  }
+  while (!out.empty() && out.back() == ' ') out.pop_back();
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -50,7 +65,7 @@ int main(int argc, char** argv) {
     for (const auto& [sub, run] : runners) {
       if (sub->parsed()) name += " " + sub->get_name();
     }
-    std::fprintf(stderr, "%s: error: %s (see --help)\n", name.c_str(), e.what());
+    std::fprintf(stderr, "%s: error: %s (see --help)\n", name.c_str(), one_line(e.what()).c_str());
     return 2;
   }
   init_gdal();
@@ -59,13 +74,13 @@ int main(int argc, char** argv) {
     try {
       return run();
     } catch (const Error& e) {
-      std::fprintf(stderr, "skyview %s: error: %s\n", sub->get_name().c_str(), e.what());
+      std::fprintf(stderr, "skyview %s: error: %s\n", sub->get_name().c_str(), one_line(e.what()).c_str());
       return 1;
     } catch (const std::bad_alloc&) {
       std::fprintf(stderr, "skyview %s: error: out of memory\n", sub->get_name().c_str());
       return 1;
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "skyview %s: error: %s\n", sub->get_name().c_str(), e.what());
+      std::fprintf(stderr, "skyview %s: error: %s\n", sub->get_name().c_str(), one_line(e.what()).c_str());
       return 1;
     }
   }

@@ -154,6 +154,13 @@ TEST_F(CliErrors, HorizonBandsNameTheirAzimuths) {
   EXPECT_NEAR(v, 45.0, 3.0);
 }
 
+// GDAL's message for a format that cannot hold the bands breaks lines; the error stays one line.
+TEST_F(CliErrors, FormatThatCannotHoldTheBands) {
+  expect_one_line_error(run_skyview("horizon " + good + " " + dir + "/h.png -of PNG --directions 8", dir),
+                        "PNG driver doesn't support 8 bands");
+  EXPECT_FALSE(std::filesystem::exists(dir + "/h.png"));
+}
+
 // `skyview horizon` writes each band as the method finds it (the sweep hands directions over one at
 // a time): every band must be its direction's horizons, in degrees.
 TEST_F(CliErrors, HorizonBandsAreTheEnginesDirections) {
