@@ -64,7 +64,6 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
     params = choice->params;
   }
   job.engine = make_horizon_engine(method, params);
-  job.params = params;
   job.quiet = o.out.quiet;
   ReadOptions ro;
   ro.band = o.band;

@@ -29,7 +29,6 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o);
 struct HorizonJob {
   Terrain terrain;
   std::unique_ptr<HorizonEngine> engine;
-  HorizonParams params;  // as run (--max-error may have chosen them)
   EdgeMode edge = EdgeMode::open;
   std::map<std::string, std::string> metadata;  // run parameters for the output
   bool quiet = false;

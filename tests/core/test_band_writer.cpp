@@ -31,18 +31,38 @@ GeoReference georef() {
   return g;
 }
 
+// A fresh folder and the output's path in it.
+struct Scratch {
+  std::string dir = temp_dir("bandwriter");
+  std::string path = dir + "/out.tif";
+};
+
+// Band b (from 0) of `ds` holds `want`, with nodata where it is NaN.
+void expect_band(GDALDataset& ds, int b, const std::vector<float>& want, float nodata) {
+  std::vector<float> got(kW * kH);
+  ASSERT_EQ(ds.GetRasterBand(b + 1)->RasterIO(GF_Read, 0, 0, kW, kH, got.data(), kW, kH, GDT_Float32, 0, 0), CE_None);
+  for (int i = 0; i < kW * kH; ++i) {
+    EXPECT_EQ(got[i], std::isnan(want[i]) ? nodata : want[i]) << "band " << b << " cell " << i;
+  }
+}
+
 std::size_t files_in(const std::string& dir) {
   return static_cast<std::size_t>(
       std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()));
 }
 
-class BandWriterFormats : public ::testing::TestWithParam<const char*> {};
+// Each test writes `path` in a fresh folder with `wo`.
+class BandWriterTest : public ::testing::Test {
+ protected:
+  const Scratch scratch;
+  const std::string& path = scratch.path;
+  WriteOptions wo;
+};
+
+class BandWriterFormats : public BandWriterTest, public ::testing::WithParamInterface<const char*> {};
 
 // GTiff is written in place band by band; COG only copies a finished dataset (the memory path).
 TEST_P(BandWriterFormats, BandsInAnyOrderAppearWhenFinished) {
-  const std::string dir = temp_dir("bandwriter");
-  const std::string path = dir + "/out.tif";
-  WriteOptions wo;
   wo.format = GetParam();
   wo.metadata["RUN"] = "test";
   {
@@ -54,7 +74,7 @@ TEST_P(BandWriterFormats, BandsInAnyOrderAppearWhenFinished) {
     EXPECT_FALSE(std::filesystem::exists(path)) << "nothing at the path before finish()";
     out.finish();
   }
-  EXPECT_EQ(files_in(dir), 1u) << "no temporary file left";
+  EXPECT_EQ(files_in(scratch.dir), 1u) << "no temporary file left";
   GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER));
   ASSERT_TRUE(ds);
   ASSERT_EQ(ds->GetRasterCount(), 3);
@@ -72,22 +92,14 @@ TEST_P(BandWriterFormats, BandsInAnyOrderAppearWhenFinished) {
     int has_nodata = 0;
     EXPECT_EQ(band->GetNoDataValue(&has_nodata), wo.nodata);
     EXPECT_TRUE(has_nodata);
-    std::vector<float> got(kW * kH);
-    ASSERT_EQ(band->RasterIO(GF_Read, 0, 0, kW, kH, got.data(), kW, kH, GDT_Float32, 0, 0), CE_None);
-    const std::vector<float> want = band_values(b);
-    for (int i = 0; i < kW * kH; ++i) {
-      EXPECT_EQ(got[i], std::isnan(want[i]) ? wo.nodata : want[i]) << "band " << b << " cell " << i;
-    }
+    expect_band(*ds, b, band_values(b), wo.nodata);
   }
 }
 
 INSTANTIATE_TEST_SUITE_P(Formats, BandWriterFormats, ::testing::Values("GTiff", "COG"));
 
 // A band written in parts of rows (what `skyview horizon` does by blocks) equals the band whole.
-TEST(BandWriter, BandsInPartsOfRows) {
-  const std::string dir = temp_dir("bandwriter");
-  const std::string path = dir + "/out.tif";
-  WriteOptions wo;
+TEST_F(BandWriterTest, BandsInPartsOfRows) {
   const std::vector<float> v = band_values(1);
   {
     BandWriter out(path, kW, kH, 1, georef(), wo);
@@ -101,21 +113,16 @@ TEST(BandWriter, BandsInPartsOfRows) {
   GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER));
   ASSERT_TRUE(ds);
   EXPECT_STREQ(ds->GetRasterBand(1)->GetDescription(), "parts");
-  std::vector<float> got(kW * kH);
-  ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, kW, kH, got.data(), kW, kH, GDT_Float32, 0, 0), CE_None);
-  for (int i = 0; i < kW * kH; ++i) EXPECT_EQ(got[i], std::isnan(v[i]) ? wo.nodata : v[i]) << i;
+  expect_band(*ds, 0, v, wo.nodata);
 }
 
-TEST(BandWriter, AbandonedLeavesNothingAndKeepsTheOldOutput) {
-  const std::string dir = temp_dir("bandwriter");
-  const std::string path = dir + "/out.tif";
-  WriteOptions wo;
+TEST_F(BandWriterTest, AbandonedLeavesNothingAndKeepsTheOldOutput) {
   const std::vector<float> v = band_values(0);
   {
     BandWriter out(path, kW, kH, 2, georef(), wo);
     out.write(0, {"a", "1", v.data(), {}});
   }  // an error between bands: never finished
-  EXPECT_EQ(files_in(dir), 0u);
+  EXPECT_EQ(files_in(scratch.dir), 0u);
 
   std::ofstream(path) << "an older output";
   EXPECT_THROW(BandWriter(path, kW, kH, 1, georef(), wo), skyview::Error) << "exists, and no overwrite";
@@ -124,7 +131,7 @@ TEST(BandWriter, AbandonedLeavesNothingAndKeepsTheOldOutput) {
     BandWriter out(path, kW, kH, 1, georef(), wo);
     out.write(0, {"a", "1", v.data(), {}});
   }
-  EXPECT_EQ(files_in(dir), 1u);
+  EXPECT_EQ(files_in(scratch.dir), 1u);
   std::ifstream in(path);
   std::string old((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_EQ(old, "an older output");
