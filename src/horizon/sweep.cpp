@@ -23,10 +23,12 @@
 // loaded each line's hull from memory at every row (a cache miss per cell and direction: 2.8x
 // slower at 4000 x 4000).
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <condition_variable>
 #include <cstring>
 #include <limits>
 #include <map>
@@ -719,6 +721,10 @@ class SweepEngine final : public HorizonEngine {
   // Workers take directions in order; whichever finishes the next direction to hand over hands it
   // and any finished after it to `take`, one at a time (planes finished early wait). So only the
   // directions in progress, and those waiting for an earlier one, are held: a few planes, not all.
+  // A slow `take` (compressing a GeoTIFF band) must not let the other workers race ahead: a worker
+  // starts direction k only once k is within `ahead` of the next to hand over. The worker holding
+  // that next direction never waits, so it always arrives; `take` runs isolated, so that a worker
+  // inside it cannot pick up a new direction (which might wait for the very direction it hands).
   bool streams_directions() const override { return true; }
   void compute_directions(const Terrain& terrain, const Window& window, HorizonField& out, ProgressCounter& progress,
                           const DirectionBatchSink& take) const override {
@@ -733,13 +739,16 @@ class SweepEngine final : public HorizonEngine {
     std::map<int, Planes> finished;
     std::vector<Planes> spare;
     int next = 0;  // the next direction to hand over
+    std::condition_variable handed;
+    const int ahead = 2 * tbb::this_task_arena::max_concurrency();
     bool handing = false;
     std::atomic<int> started{0};
     tbb::parallel_for(0, p_.directions, [&](int) {
       const int k = started++;
       Planes planes;
       {
-        const std::lock_guard<std::mutex> lock(mutex);
+        std::unique_lock<std::mutex> lock(mutex);
+        handed.wait(lock, [&] { return k < next + ahead; });
         if (!spare.empty()) planes = std::move(spare.back()), spare.pop_back();
       }
       if (!planes.upper) {
@@ -756,10 +765,11 @@ class SweepEngine final : public HorizonEngine {
         Planes ready = std::move(finished.begin()->second);
         finished.erase(finished.begin());
         lock.unlock();
-        take(next, 1, ready.upper.get(), ready.lower.get());
+        tbb::this_task_arena::isolate([&] { take(next, 1, ready.upper.get(), ready.lower.get()); });
         lock.lock();
         spare.push_back(std::move(ready));
         ++next;
+        handed.notify_all();
       }
       handing = false;
     });

@@ -1,6 +1,10 @@
 // Properties every method must keep: tiles equal a whole run, early exit changes nothing,
 // nodata never occludes, sampled agrees with march on a city.
+#include <tbb/task_arena.h>
+
 #include <algorithm>
+#include <chrono>
+#include <thread>
 
 #include "skyview/error.h"
 #include "test_support.h"
@@ -501,4 +505,27 @@ TEST(ComputeByRowBlocks, BlocksTileTheWindowAndHoldItsHorizons) {
     });
     EXPECT_EQ(next_row, window.row0 + window.rows);
   }
+}
+
+// A slow consumer (compressing a GeoTIFF band) must not let the sweep's workers race ahead and hold
+// every direction: when direction k is handed over, at most 2 x workers directions past it may be
+// done. Checked through progress, which advances as each direction is done.
+TEST(SweepDirections, ASlowConsumerHoldsBackTheWorkers) {
+  const Terrain t = small_city();
+  HorizonParams p = sweep_params(32, "off", 8);
+  p.lower = false;
+  const auto engine = make_horizon_engine("sweep", p);
+  const Window whole = Window::whole(t);
+  ProgressCounter progress;
+  progress.set_total(static_cast<std::uint64_t>(whole.cells()));
+  const int ahead = 2 * tbb::this_task_arena::max_concurrency();
+  HorizonField rest;
+  int handed = 0;
+  engine->compute_directions(t, whole, rest, progress, [&](int first, int count, const float*, const float*) {
+    const double done = progress.fraction() * p.directions;
+    EXPECT_LE(done, first + count + ahead + 1e-9) << "handing over direction " << first;
+    handed += count;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  });
+  EXPECT_EQ(handed, p.directions);
 }
