@@ -76,8 +76,8 @@ void BM_Sweep16WithLower(benchmark::State& s) {
   run(s, "sweep", p);
 }
 
-// What `skyview svf` runs: horizons and lowest angles by the sweep, then the five products, computed
-// by `products(terrain, whole window, engine)`. The counter is still cell-directions.
+// Horizons and lowest angles by the sweep, then the five products, computed by
+// `products(terrain, whole window, engine)`. The counter is still cell-directions.
 template <class Products>
 void run_svf(benchmark::State& state, Products&& products) {
   const skyview::Terrain& t = city(bench_size());
@@ -85,7 +85,7 @@ void run_svf(benchmark::State& state, Products&& products) {
   p.lower = true;
   const auto engine = skyview::make_horizon_engine("sweep", p);
   for (auto _ : state) {
-    const skyview::SkyViewProducts result = products(t, skyview::Window::whole(t), *engine, p.directions);
+    const skyview::SkyViewProducts result = products(t, skyview::Window::whole(t), *engine);
     benchmark::DoNotOptimize(result.svf.data());
   }
   state.counters["cell_dirs_per_s"] = benchmark::Counter(static_cast<double>(t.width()) * t.height() * p.directions,
@@ -94,7 +94,7 @@ void run_svf(benchmark::State& state, Products&& products) {
 
 // Every direction held, products summed at the end.
 void BM_SvfWhole16(benchmark::State& state) {
-  run_svf(state, [](const skyview::Terrain& t, const skyview::Window& w, const skyview::HorizonEngine& engine, int) {
+  run_svf(state, [](const skyview::Terrain& t, const skyview::Window& w, const skyview::HorizonEngine& engine) {
     skyview::HorizonField field;
     skyview::ProgressCounter progress;
     engine.compute(t, w, field, progress);
@@ -102,17 +102,12 @@ void BM_SvfWhole16(benchmark::State& state) {
   });
 }
 
-// Products summed as the sweep hands the directions over (the CLI's path from 16 directions on).
+// What `skyview svf` runs (compute_sky_view): from 16 directions on, the products summed as the
+// sweep hands the directions over.
 void BM_SvfStreamed16(benchmark::State& state) {
-  run_svf(state, [](const skyview::Terrain& t, const skyview::Window& w, const skyview::HorizonEngine& engine,
-                    int directions) {
-    skyview::SkyViewSums sums(t, w, directions);
-    skyview::HorizonField rest;
+  run_svf(state, [](const skyview::Terrain& t, const skyview::Window& w, const skyview::HorizonEngine& engine) {
     skyview::ProgressCounter progress;
-    engine.compute_directions(t, w, rest, progress, [&](int first, int count, const float* upper, const float* lower) {
-      sums.add(first, count, upper, lower, rest.rotation);
-    });
-    return sums.finish(engine.radius(), skyview::EdgeMode::open);
+    return skyview::compute_sky_view(engine, t, w, skyview::EdgeMode::open, progress);
   });
 }
 

@@ -66,12 +66,12 @@ class SkyViewSums {
 SkyViewProducts sky_view_products(const Terrain& terrain, const Window& window, const HorizonField& field,
                                   double radius, EdgeMode edge);
 
-// The products of `window`'s cells straight from a method, holding about `horizon_bytes` of
-// horizons at most, so that memory does not grow with the number of directions: a method that
-// finds one direction at a time (the sweep) hands them over as they are done, summed by
-// SkyViewSums (from 16 directions on, where that keeps less than the horizons would); the others
-// compute the window in blocks of rows. The same bits as sky_view_products over the whole
-// field (tested). Progress advances by the window's cells.
+// The products of `window`'s cells straight from a method, so that memory does not grow with the
+// number of directions: a method that finds one direction at a time (the sweep) hands them over as
+// they are done, summed by SkyViewSums from 16 directions on (below that, its whole field takes
+// less than the sums would); the others compute the window in blocks of rows holding about
+// `horizon_bytes` of horizons each. The same bits as sky_view_products over the whole field
+// (tested). Progress advances by the window's cells.
 SkyViewProducts compute_sky_view(const HorizonEngine& engine, const Terrain& terrain, const Window& window,
                                  EdgeMode edge, ProgressCounter& progress,
                                  std::size_t horizon_bytes = kHorizonBlockBytes);
