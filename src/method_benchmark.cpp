@@ -24,33 +24,6 @@ std::string BenchConfig::label() const {
   return s.str();
 }
 
-ErrorStats compare_to_reference(const Grid<float>& value, const Grid<float>& reference) {
-  std::vector<double> abs_err;
-  abs_err.reserve(value.size());
-  ErrorStats e;
-  double sum2 = 0, sum = 0;
-  for (std::size_t i = 0; i < value.size(); ++i) {
-    const double v = value.values()[i], r = reference.values()[i];
-    if (std::isnan(v) || std::isnan(r)) continue;
-    const double d = v - r;
-    sum += d;
-    sum2 += d * d;
-    abs_err.push_back(std::abs(d));
-    e.share_above_0_01 += std::abs(d) > 0.01;
-  }
-  e.cells = static_cast<std::int64_t>(abs_err.size());
-  if (abs_err.empty()) return e;
-  const double n = static_cast<double>(abs_err.size());
-  e.rmse = std::sqrt(sum2 / n);
-  e.bias = sum / n;
-  e.share_above_0_01 /= n;
-  const std::size_t k = std::min(abs_err.size() - 1, static_cast<std::size_t>(std::ceil(0.99 * n)) - 1);
-  std::nth_element(abs_err.begin(), abs_err.begin() + static_cast<std::ptrdiff_t>(k), abs_err.end());
-  e.p99 = abs_err[k];
-  e.max_abs = *std::max_element(abs_err.begin(), abs_err.end());
-  return e;
-}
-
 std::vector<BenchConfig> default_bench_grid(const std::vector<std::string>& methods) {
   std::vector<BenchConfig> grid;
   for (const auto& m : methods) {
@@ -158,7 +131,7 @@ nlohmann::json stats_json(const ErrorStats& e) {
           {"bias", e.bias},
           {"p99_abs", e.p99},
           {"max_abs", e.max_abs},
-          {"share_above_0_01", e.share_above_0_01},
+          {"share_above_0_01", e.share_above},
           {"cells", e.cells}};
 }
 
@@ -194,7 +167,7 @@ std::string bench_to_markdown(const std::string& raster, const BenchReference& r
   for (const auto& r : rs) {
     s << "| " << r.config.label() << " | " << std::setprecision(3) << r.seconds << " | " << std::setprecision(1)
       << r.cell_dirs_per_second / 1e6 << " | " << std::setprecision(4) << r.svf.rmse << " | " << r.svf.bias << " | "
-      << r.svf.p99 << " | " << r.svf.max_abs << " | " << std::setprecision(3) << r.svf.share_above_0_01 << " | "
+      << r.svf.p99 << " | " << r.svf.max_abs << " | " << std::setprecision(3) << r.svf.share_above << " | "
       << std::setprecision(4) << r.sky_visibility.p99 << " | " << (r.pareto ? "●" : "") << " |\n";
   }
   return s.str();

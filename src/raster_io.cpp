@@ -57,28 +57,82 @@ void init_gdal() {
   });
 }
 
-Terrain read_terrain(const std::string& path, const ReadOptions& options, ReadReport* report) {
+namespace {
+
+// One band of a raster read whole as doubles, with what every reader checks: the file opens as a
+// raster, the band exists.
+struct RawBand {
+  DatasetPtr ds;
+  int width = 0, height = 0;
+  std::vector<double> values;
+  int has_nodata = 0;
+  double nodata = 0;
+};
+
+RawBand read_raw_band(const std::string& path, int band_index) {
   init_gdal();
   if (!path_exists(path)) throw Error("cannot open '" + path + "': no such file");
   CPLErrorReset();
-  DatasetPtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
-  if (!ds) throw Error("cannot open '" + path + "' as a raster: " + last_gdal_error());
-  const int width = ds->GetRasterXSize(), height = ds->GetRasterYSize();
-  if (options.band < 1 || options.band > ds->GetRasterCount()) {
-    throw Error("'" + path + "' has " + std::to_string(ds->GetRasterCount()) + " band(s); band " +
-                std::to_string(options.band) + " does not exist");
+  RawBand r;
+  r.ds.reset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  if (!r.ds) throw Error("cannot open '" + path + "' as a raster: " + last_gdal_error());
+  r.width = r.ds->GetRasterXSize(), r.height = r.ds->GetRasterYSize();
+  if (band_index < 1 || band_index > r.ds->GetRasterCount()) {
+    throw Error("'" + path + "' has " + std::to_string(r.ds->GetRasterCount()) + " band(s); band " +
+                std::to_string(band_index) + " does not exist");
   }
+  GDALRasterBand* band = r.ds->GetRasterBand(band_index);
+  r.values.resize(static_cast<std::size_t>(r.width) * r.height);
+  if (band->RasterIO(GF_Read, 0, 0, r.width, r.height, r.values.data(), r.width, r.height, GDT_Float64, 0, 0) !=
+      CE_None) {
+    throw Error("cannot read band " + std::to_string(band_index) + " of '" + path + "': " + last_gdal_error());
+  }
+  r.nodata = band->GetNoDataValue(&r.has_nodata);
+  return r;
+}
+
+GeoReference georeference_of(GDALDataset& ds) {
+  GeoReference g;
+  double gt[6];
+  g.has_geotransform = ds.GetGeoTransform(gt) == CE_None;
+  std::copy(gt, gt + 6, g.geotransform.begin());
+  if (const OGRSpatialReference* srs = ds.GetSpatialRef()) {
+    char* wkt = nullptr;
+    const char* opts[] = {"FORMAT=WKT2_2018", nullptr};
+    srs->exportToWkt(&wkt, opts);
+    g.crs_wkt = wkt ? wkt : "";
+    CPLFree(wkt);
+  }
+  return g;
+}
+
+}  // namespace
+
+RasterBand read_band(const std::string& path, int band_index) {
+  RawBand raw = read_raw_band(path, band_index);
+  RasterBand out;
+  out.values = Grid<float>(raw.width, raw.height);
+  for (std::size_t i = 0; i < raw.values.size(); ++i) {
+    const double v = raw.values[i];
+    out.values.values()[i] =
+        raw.has_nodata && v == raw.nodata ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(v);
+  }
+  out.georef = georeference_of(*raw.ds);
+  const char* description = raw.ds->GetRasterBand(band_index)->GetDescription();
+  out.description = description ? description : "";
+  return out;
+}
+
+Terrain read_terrain(const std::string& path, const ReadOptions& options, ReadReport* report) {
+  if (!(options.z_scale > 0.0) || !std::isfinite(options.z_scale)) throw Error("--z-scale must be a positive number");
+  RawBand raw = read_raw_band(path, options.band);
+  const int width = raw.width, height = raw.height;
   if (static_cast<std::int64_t>(width) * height < 2) {
     throw Error("'" + path + "' has a single cell: a horizon needs at least two cells");
   }
-  if (!(options.z_scale > 0.0) || !std::isfinite(options.z_scale)) throw Error("--z-scale must be a positive number");
-  GDALRasterBand* band = ds->GetRasterBand(options.band);
-  std::vector<double> values(static_cast<std::size_t>(width) * height);
-  if (band->RasterIO(GF_Read, 0, 0, width, height, values.data(), width, height, GDT_Float64, 0, 0) != CE_None) {
-    throw Error("cannot read band " + std::to_string(options.band) + " of '" + path + "': " + last_gdal_error());
-  }
-  int has_nodata = 0;
-  const double nodata = band->GetNoDataValue(&has_nodata);
+  std::vector<double>& values = raw.values;
+  const int has_nodata = raw.has_nodata;
+  const double nodata = raw.nodata;
   const bool nodata_is_nan = has_nodata && std::isnan(nodata);
 
   ReadReport rep;
@@ -120,18 +174,10 @@ Terrain read_terrain(const std::string& path, const ReadOptions& options, ReadRe
   t.base_height = 0.5 * (lo + hi);
   t.heights = Grid<float>(width, height);
   for (std::size_t i = 0; i < values.size(); ++i) t.heights.values()[i] = static_cast<float>(values[i] - t.base_height);
-  double gt[6];
-  t.georef.has_geotransform = ds->GetGeoTransform(gt) == CE_None;
-  std::copy(gt, gt + 6, t.georef.geotransform.begin());
+  t.georef = georeference_of(*raw.ds);
+  const auto& gt = t.georef.geotransform;
   if (t.georef.has_geotransform && (gt[1] * gt[5] - gt[2] * gt[4]) == 0.0) {
     throw Error("'" + path + "' has a degenerate geotransform (zero cell size)");
-  }
-  if (const OGRSpatialReference* srs = ds->GetSpatialRef()) {
-    char* wkt = nullptr;
-    const char* opts[] = {"FORMAT=WKT2_2018", nullptr};
-    srs->exportToWkt(&wkt, opts);
-    t.georef.crs_wkt = wkt ? wkt : "";
-    CPLFree(wkt);
   }
   try {
     t.frame = GroundFrame(t.georef, width, height);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "skyview/error_stats.h"
 #include "skyview/horizon_engine.h"
 #include "skyview/sky_view.h"
 
@@ -19,14 +20,6 @@ struct BenchConfig {
   HorizonParams params;
   std::string label() const;
 };
-
-struct ErrorStats {
-  double rmse = 0, bias = 0, p99 = 0, max_abs = 0, share_above_0_01 = 0;
-  std::int64_t cells = 0;
-};
-
-// Statistics of (value - reference) over cells where both are valid.
-ErrorStats compare_to_reference(const Grid<float>& value, const Grid<float>& reference);
 
 struct BenchResult {
   BenchConfig config;

@@ -34,6 +34,15 @@ struct ReadReport {
 // band, infinite values, or a CRS that cannot give ground distances.
 Terrain read_terrain(const std::string& path, const ReadOptions& options, ReadReport* report = nullptr);
 
+// One band of any raster as floats (NaN where nodata), for comparing results: values as stored,
+// no checks beyond the file opening and the band existing.
+struct RasterBand {
+  Grid<float> values;
+  GeoReference georef;
+  std::string description;  // GDAL's band description ("svf" in skyview's outputs), may be empty
+};
+RasterBand read_band(const std::string& path, int band);
+
 struct OutputBand {
   std::string description;
   std::string unit;               // "degrees", "1" for ratios ...

@@ -1,0 +1,135 @@
+// Error statistics (what `skyview bench` and `skyview compare` report) and the compare command.
+#include <sys/wait.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "skyview/error_stats.h"
+#include "test_support.h"
+
+using namespace skyview;
+using namespace skyview::test;
+
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+// value = reference + d with d = -0.001 i for i = 0..99, and cells that either side leaves out.
+struct KnownErrors {
+  Grid<float> value{12, 10}, reference{12, 10};
+  KnownErrors() {
+    for (int i = 0; i < 100; ++i) {
+      reference(i % 10, i / 10) = 0.5f + 0.001f * static_cast<float>(i % 7);
+      value(i % 10, i / 10) = reference(i % 10, i / 10) - 0.001f * static_cast<float>(i);
+    }
+    for (int row = 0; row < 10; ++row) value(10, row) = kNaN, reference(11, row) = kNaN;
+  }
+};
+
+TEST(ErrorStats, KnownErrors) {
+  const KnownErrors k;
+  const ErrorStats e = compare_to_reference(k.value, k.reference, 0.0505);
+  EXPECT_EQ(e.cells, 100);
+  EXPECT_NEAR(e.bias, -0.0495, 1e-6);                              // mean of -0.001 i
+  EXPECT_NEAR(e.rmse, std::sqrt(328350.0 / 100.0) * 0.001, 1e-6);  // sum of i^2 = 328350
+  EXPECT_NEAR(e.p99, 0.098, 1e-6);                                 // nearest rank: the 99th of 100
+  EXPECT_NEAR(e.max_abs, 0.099, 1e-6);
+  EXPECT_DOUBLE_EQ(e.share_above, 0.49);  // i = 51..99
+  EXPECT_DOUBLE_EQ(e.threshold, 0.0505);
+}
+
+TEST(ErrorStats, NothingInCommon) {
+  Grid<float> a(3, 3, kNaN), b(3, 3, 1.0f);
+  EXPECT_EQ(compare_to_reference(a, b).cells, 0);
+}
+
+struct RunResult {
+  int exit_code;
+  std::string err;
+};
+
+class CompareCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir = temp_dir("compare");
+    georef = local_grid(12, 10, 1.0);
+    write(dir + "/value.tif", k.value);
+    write(dir + "/reference.tif", k.reference);
+  }
+  void write(const std::string& path, const Grid<float>& g, const GeoReference* other = nullptr) const {
+    write_bands(path, g.width(), g.height(), other ? *other : georef, {{"svf", "1", g.data(), {}}}, {});
+  }
+  RunResult run(const std::string& args) const {
+    const std::string err_file = dir + "/stderr.txt";
+    const int status =
+        std::system((std::string(SKYVIEW_EXE) + " compare " + args + " 2>" + err_file + " >/dev/null").c_str());
+    std::ifstream in(err_file);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, std::string(std::istreambuf_iterator<char>(in), {})};
+  }
+  nlohmann::json stats(const std::string& args) const {
+    const RunResult r = run(args + " -q --json " + dir + "/stats.json");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::ifstream in(dir + "/stats.json");
+    return nlohmann::json::parse(in);
+  }
+  KnownErrors k;
+  GeoReference georef;
+  std::string dir;
+};
+
+TEST_F(CompareCli, ReportsTheStatisticsOfTheBands) {
+  const nlohmann::json j = stats(dir + "/value.tif " + dir + "/reference.tif --threshold 0.0505");
+  EXPECT_EQ(j["cells"], 100);
+  EXPECT_NEAR(j["bias"].get<double>(), -0.0495, 1e-6);
+  EXPECT_NEAR(j["p99_abs"].get<double>(), 0.098, 1e-6);
+  EXPECT_NEAR(j["share_above"].get<double>(), 0.49, 1e-12);
+  EXPECT_EQ(j["reference"]["description"], "svf");
+}
+
+// Percent against a fraction: value * 0.01 + 0.5 - reference.
+TEST_F(CompareCli, ScaleAndOffsetApplyToTheJudgedRaster) {
+  Grid<float> percent(12, 10);
+  for (std::size_t i = 0; i < percent.size(); ++i) percent.values()[i] = (k.reference.values()[i] - 0.5f) * 100.0f;
+  write(dir + "/percent.tif", percent);
+  const nlohmann::json j = stats(dir + "/percent.tif " + dir + "/reference.tif --scale 0.01 --offset 0.5");
+  EXPECT_EQ(j["cells"], 110);  // column 10 is valid in both now
+  EXPECT_LT(j["max_abs"].get<double>(), 1e-6);
+}
+
+// A wall one cell thick: with --max-slope, the cells whose Horn slope it raises are left out.
+TEST_F(CompareCli, MaxSlopeLeavesOutSteepCells) {
+  Grid<float> dem(12, 10, 0.0f);
+  for (int row = 0; row < 10; ++row) dem(5, row) = 10.0f;
+  write(dir + "/dem.tif", dem);
+  const nlohmann::json all = stats(dir + "/value.tif " + dir + "/reference.tif");
+  const nlohmann::json flat =
+      stats(dir + "/value.tif " + dir + "/reference.tif --dem " + dir + "/dem.tif --max-slope 5");
+  EXPECT_EQ(all["cells"], 100);
+  // Columns 4 and 6 are steep, and the wall's two end cells, whose missing neighbours take the
+  // wall's height; along the wall Horn's differences cancel.
+  EXPECT_EQ(flat["left_out_steep"], 22);
+  EXPECT_EQ(flat["cells"], 78);
+}
+
+TEST_F(CompareCli, RefusesRastersOnDifferentGrids) {
+  write(dir + "/small.tif", Grid<float>(11, 10, 0.5f));
+  RunResult r = run(dir + "/small.tif " + dir + "/reference.tif");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("is 11 x 10 cells but"), std::string::npos) << r.err;
+  GeoReference shifted = georef;
+  shifted.geotransform[0] += 0.5;
+  write(dir + "/shifted.tif", k.value, &shifted);
+  r = run(dir + "/shifted.tif " + dir + "/reference.tif");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("not the same geotransform"), std::string::npos) << r.err;
+  r = run(dir + "/value.tif " + dir + "/reference.tif --max-slope 5");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("--max-slope needs --dem"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  write(dir + "/empty.tif", Grid<float>(12, 10, kNaN));
+  r = run(dir + "/empty.tif " + dir + "/reference.tif");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("no cell is valid in both"), std::string::npos) << r.err;
+}
+
+}  // namespace
