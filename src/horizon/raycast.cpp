@@ -4,8 +4,9 @@
 // ray finds a higher point inside a quad than on its edges: all methods see one surface. A quad
 // with one nodata corner keeps the triangle of the other three; one with more is left open
 // (nodata never occludes). The mesh sits in the ground frame at the raster centre. Per cell
-// and direction, the horizon is found by bisecting the elevation angle with occlusion rays
-// (a heightfield seen from its surface is blocked below the horizon and open above it); the
+// and direction, the horizon is found by bisecting the elevation angle with occlusion rays from
+// the cell's own vertex, which ignore the triangles around it (a heightfield seen from its
+// surface is blocked below the horizon and open above it); the
 // svf is also estimated directly by stratified cosine-weighted hemisphere sampling, with its
 // standard error, as an independent check of the per-sector integration.
 #include <embree3/rtcore.h>
@@ -43,11 +44,44 @@ void embree_error(void* user, RTCError code, const char* message) {
     first->assign("Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : ""));
 }
 
+// The eye sits exactly on its own vertex, so its rays would hit the triangles around it at
+// distance zero. (Lifting it instead, by 64 float steps of the mesh's extent, 7.6 mm on a 1 km
+// raster, lowered the horizons that the nearest cells make on rough terrain: p99 |svf error| 0.0018
+// between the march and the reference on a real 1 m lidar DEM.) The occlusion filter rejects hits
+// on triangles that share a vertex with the eye; a ray through one of them meets the plane only at
+// the eye. What those triangles block is decided without Embree: a ray below the slope to where its
+// ground track leaves them (its first row or column crossing, TerrainMesh::first_crossing_slope)
+// goes into the terrain at once; above it, it clears them (their far edges lie on grid lines, and
+// inside a quad the mesh's crease is a valley).
+struct EyeContext {
+  RTCIntersectContext base;  // first, so that Embree's pointer to it is one to the whole
+  unsigned vertex = 0;       // the eye's vertex in the mesh over cell centres
+  unsigned ribbon = 0;       // on a one-row or one-column raster: the first of its two ribbon vertices
+};
+
+// What the filter knows of a geometry: its triangles, and whether it is the ribbon.
+struct Triangles {
+  const unsigned* indices = nullptr;
+  bool ribbon = false;
+};
+
+void reject_own_triangles(const RTCFilterFunctionNArguments* args) {
+  const auto* mesh = static_cast<const Triangles*>(args->geometryUserPtr);
+  const auto* eye = reinterpret_cast<const EyeContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const unsigned* v = mesh->indices + 3 * RTCHitN_primID(args->hit, args->N, i);
+    auto own = [&](unsigned x) { return mesh->ribbon ? x == eye->ribbon || x == eye->ribbon + 1 : x == eye->vertex; };
+    if (own(v[0]) || own(v[1]) || own(v[2])) args->valid[i] = 0;
+  }
+}
+
 // Vertices in metres east/north of the buffer's first cell and height relative to the base.
 class TerrainMesh {
  public:
-  TerrainMesh(RTCDevice device, const Terrain& t, double sign) {
+  TerrainMesh(RTCDevice device, const Terrain& t, double sign) : t_(t), sign_(sign) {
     const int w = t.width(), h = t.height();
+    width_ = w;
     j_ = t.frame.at(t.origin_col + 0.5 * w, t.origin_row + 0.5 * h);
     scene_.reset(rtcNewScene(device));
     rtcSetSceneFlags(scene_.get(), RTC_SCENE_FLAG_ROBUST);
@@ -61,7 +95,6 @@ class TerrainMesh {
         v[3 * i + 0] = static_cast<float>(j_.a * c + j_.b * r);
         v[3 * i + 1] = static_cast<float>(j_.c * c + j_.d * r);
         v[3 * i + 2] = std::isnan(z) ? 0.0f : static_cast<float>(sign * z);
-        extent_ = std::max({extent_, std::abs(double(v[3 * i])), std::abs(double(v[3 * i + 1])), std::abs(double(z))});
       }
     }
     std::vector<unsigned> idx;
@@ -95,16 +128,51 @@ class TerrainMesh {
     auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                               3 * sizeof(unsigned), idx.size() / 3));
     std::copy(idx.begin(), idx.end(), ib);
+    mesh_ = {ib, false};
+    rtcSetGeometryUserData(geom, &mesh_);
+    rtcSetGeometryOccludedFilterFunction(geom, reject_own_triangles);
     rtcCommitGeometry(geom);
     rtcAttachGeometry(scene_.get(), geom);
     rtcReleaseGeometry(geom);
     rtcCommitScene(scene_.get());
   }
 
+  // Slope, in this mesh's sign, from cell (col, row) to where the ground track along the azimuth
+  // first crosses a row or column line (read linearly along it, as the march reads it): the far
+  // edge of the triangles around the cell's vertex. -inf where that crossing leaves the buffer or
+  // touches nodata (which never occludes).
+  double first_crossing_slope(int col, int row, double sin_az, double cos_az) const {
+    constexpr double kNone = -std::numeric_limits<double>::infinity();
+    const double det = j_.a * j_.d - j_.b * j_.c;
+    double pc = (j_.d * sin_az - j_.b * cos_az) / det, pr = (j_.a * cos_az - j_.c * sin_az) / det;
+    // cos(90°) is 6e-17, not 0: keep tracks along a row or column on it.
+    if (std::abs(pc) < 1e-12 * std::abs(pr)) pc = 0.0;
+    if (std::abs(pr) < 1e-12 * std::abs(pc)) pr = 0.0;
+    const double to_col = pc != 0.0 ? 1.0 / std::abs(pc) : kInf, to_row = pr != 0.0 ? 1.0 / std::abs(pr) : kInf;
+    const double d = std::min(to_col, to_row);  // metres
+    double x = to_col <= to_row ? col + (pc > 0 ? 1 : -1) : col + pc * d;
+    double y = to_col <= to_row ? row + pr * d : row + (pr > 0 ? 1 : -1);
+    if (to_col <= to_row) y = std::abs(y - std::round(y)) < 1e-9 ? std::round(y) : y;
+    if (to_col > to_row) x = std::abs(x - std::round(x)) < 1e-9 ? std::round(x) : x;
+    if (x < 0 || y < 0 || x > t_.width() - 1 || y > t_.height() - 1) return kNone;
+    const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
+    const int x1 = std::min(x0 + 1, t_.width() - 1), y1 = std::min(y0 + 1, t_.height() - 1);
+    const double fx = x - x0, fy = y - y0;
+    // Along the crossed line only one of fx, fy is fractional; the other neighbour is not read.
+    const double z0 = t_.heights(x0, y0);
+    const double z1 = fx > 0 ? t_.heights(x1, y0) : fy > 0 ? t_.heights(x0, y1) : z0;
+    const double z = z0 + (fx > 0 ? fx : fy) * (z1 - z0);
+    if (std::isnan(z)) return kNone;
+    return sign_ * (z - t_.heights(col, row)) / d;
+  }
+
   // True when the ray from (col,row) at height z, along azimuth/elevation, hits terrain within `range`.
   bool occluded(int col, int row, double z, double sin_az, double cos_az, double elevation, double range) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
+    if (std::tan(elevation) < first_crossing_slope(col, row, sin_az, cos_az)) return true;
+    EyeContext context;
+    rtcInitIntersectContext(&context.base);
+    context.vertex = static_cast<unsigned>(row * width_ + col);
+    context.ribbon = 2u * static_cast<unsigned>(std::max(col, row));  // one of them is 0 on a ribbon
     RTCRay ray{};
     ray.org_x = static_cast<float>(j_.a * col + j_.b * row);
     ray.org_y = static_cast<float>(j_.c * col + j_.d * row);
@@ -113,14 +181,14 @@ class TerrainMesh {
     ray.dir_x = static_cast<float>(ce * sin_az);
     ray.dir_y = static_cast<float>(ce * cos_az);
     ray.dir_z = static_cast<float>(std::sin(elevation));
-    // No tnear: a wall one cell away is hit within lift/slope of the eye, and skipping such hits
-    // lets the ray slip under the surface. The eye's lift alone keeps it off its own triangles.
+    // No tnear: a wall one cell away may be hit arbitrarily close to the eye. The filter alone keeps
+    // the rays off the eye's own triangles.
     ray.tnear = 0.0f;
     // The search radius is a ground distance: a steep ray may travel farther before it is reached.
     ray.tfar =
         std::isinf(range) ? std::numeric_limits<float>::infinity() : static_cast<float>(range / std::max(ce, 1e-9));
     ray.mask = 0xFFFFFFFFu;
-    rtcOccluded1(scene_.get(), &context, &ray);
+    rtcOccluded1(scene_.get(), &context.base, &ray);
     return ray.tfar < 0.0f;
   }
 
@@ -154,18 +222,22 @@ class TerrainMesh {
     auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(ribbon, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                               3 * sizeof(unsigned), idx.size() / 3));
     std::copy(idx.begin(), idx.end(), ib);
+    ribbon_ = {ib, true};
+    rtcSetGeometryUserData(ribbon, &ribbon_);
+    rtcSetGeometryOccludedFilterFunction(ribbon, reject_own_triangles);
     rtcCommitGeometry(ribbon);
     rtcAttachGeometry(scene_.get(), ribbon);
     rtcReleaseGeometry(ribbon);
   }
 
-  // The largest coordinate magnitude, which sets the float resolution of the mesh.
-  double extent() const { return extent_; }
-
  private:
+  static constexpr double kInf = std::numeric_limits<double>::infinity();
+  const Terrain& t_;
+  double sign_;
   Jacobian j_;
   ScenePtr scene_;
-  double extent_ = 0.0;
+  int width_ = 0;
+  Triangles mesh_, ribbon_;  // the filter's view of the two geometries (Embree owns the buffers)
 };
 
 class RaycastEngine final : public HorizonEngine {
@@ -193,9 +265,11 @@ class RaycastEngine final : public HorizonEngine {
                ProgressCounter& progress) const override {
     DevicePtr device(rtcNewDevice(nullptr));
     if (!device) throw Error("cannot start Embree");
+    if (!rtcGetDeviceProperty(device.get(), RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED)) {
+      throw Error("this Embree was built without filter functions, which the ray cast needs");
+    }
     std::string embree_failure;
     rtcSetDeviceErrorFunction(device.get(), embree_error, &embree_failure);
-    const double cell = terrain.frame.at(terrain.origin_col, terrain.origin_row).min_cell_size();
     TerrainMesh upper(device.get(), terrain, 1.0);
     std::unique_ptr<TerrainMesh> lower;
     if (p_.lower) lower = std::make_unique<TerrainMesh>(device.get(), terrain, -1.0);
@@ -213,9 +287,6 @@ class RaycastEngine final : public HorizonEngine {
       cos_k[k] = std::cos(sector_azimuth(k, n));
     }
     const double range = radius();
-    // The eye sits a hair above the surface so that rays leave its own triangles: 1e-4 of a cell,
-    // or 64 float steps of the largest coordinate when that is more.
-    const double lift = std::max(1e-4 * cell, 64.0 * upper.extent() * std::numeric_limits<float>::epsilon());
     tbb::parallel_for(tbb::blocked_range<int>(0, window.rows), [&](const tbb::blocked_range<int>& rows) {
       for (int wr = rows.begin(); wr != rows.end(); ++wr) {
         const int row = window.row0 + wr;
@@ -226,13 +297,13 @@ class RaycastEngine final : public HorizonEngine {
           const double z = terrain.heights(col, row);
           for (int k = 0; k < n; ++k) {
             out.upper_at(cell_index, k) =
-                static_cast<float>(bisect_horizon(upper, col, row, z + lift, sin_k[k], cos_k[k], range));
+                static_cast<float>(bisect_horizon(upper, col, row, z, sin_k[k], cos_k[k], range));
             if (lower) {
               out.lower_at(cell_index, k) =
-                  static_cast<float>(-bisect_horizon(*lower, col, row, -z + lift, sin_k[k], cos_k[k], range));
+                  static_cast<float>(-bisect_horizon(*lower, col, row, -z, sin_k[k], cos_k[k], range));
             }
           }
-          if (p_.rays > 0) monte_carlo_svf(upper, terrain, col, row, z + lift, range, out, cell_index);
+          if (p_.rays > 0) monte_carlo_svf(upper, terrain, col, row, z, range, out, cell_index);
         }
         progress.advance(window.cols);
       }
