@@ -1,24 +1,84 @@
 // skyview svf: sky-view factor, sky visibility and openness of every cell.
+#include <algorithm>
 #include <cstdio>
+#include <sstream>
+
+#include "skyview/error.h"
 
 #include "horizon_job.h"
 
 namespace skyview::cli {
 namespace {
 
+// The bands `skyview svf` can write, in their default order.
+struct ProductBand {
+  const char* name;
+  const char* unit;
+  const char* definition;
+  Grid<float> SkyViewProducts::*grid;
+};
+constexpr ProductBand kProducts[] = {
+    {"svf", "1", "1 - mean sin^2(max(h,0)); cosine-weighted, horizontal", &SkyViewProducts::svf},
+    {"svf_surface", "1", "view factor of the tilted cell surface (Horn normal) to the unobstructed sky",
+     &SkyViewProducts::svf_surface},
+    {"sky_visibility", "1", "1 - mean sin(max(h,0)); solid-angle fraction of the hemisphere",
+     &SkyViewProducts::sky_visibility},
+    {"openness_positive", "degree", "mean zenith angle of the horizon (Yokoyama 2002)",
+     &SkyViewProducts::openness_positive},
+    {"openness_negative", "degree", "mean nadir angle of the lowest terrain (Yokoyama 2002)",
+     &SkyViewProducts::openness_negative},
+};
+
+std::vector<const ProductBand*> chosen_products(const std::string& list) {
+  std::vector<const ProductBand*> out;
+  std::stringstream in(list);
+  for (std::string name; std::getline(in, name, ',');) {
+    const auto* it =
+        std::find_if(std::begin(kProducts), std::end(kProducts), [&](const ProductBand& p) { return name == p.name; });
+    if (it == std::end(kProducts)) {
+      throw Error("unknown product '" + name +
+                  "' (svf, svf_surface, sky_visibility, openness_positive, openness_negative)");
+    }
+    if (std::find(out.begin(), out.end(), it) != out.end()) throw Error("'" + name + "' given twice");
+    out.push_back(it);
+  }
+  if (out.empty()) throw Error("no product given");
+  return out;
+}
+
 Runner setup(CLI::App& app) {
   auto o = std::make_shared<HorizonJobOptions>();
   auto preview = std::make_shared<std::string>();
+  auto products = std::make_shared<std::string>("svf,svf_surface,sky_visibility,openness_positive,openness_negative");
   add_horizon_job_options(app, *o);
+  app.add_option("--products", *products,
+                 "Bands to write, in this order; without openness_negative the lowest angles are not computed "
+                 "(about half the sweep's time)")
+      ->capture_default_str()
+      ->check(CLI::Validator(
+          [](std::string& list) {
+            try {
+              chosen_products(list);
+              return std::string();
+            } catch (const Error& e) {
+              return std::string(e.what());
+            }
+          },
+          "LIST"));
   app.add_option("--preview", *preview, "Also write a greyscale PNG of the svf band (0 black .. 1 white)");
   app.footer(
-      "Bands: 1 svf (cosine-weighted, horizontal surface), 2 svf_surface (the cell's tilted surface), "
-      "3 sky_visibility (solid-angle fraction), 4 openness_positive, 5 openness_negative (degrees).");
-  return [o, preview] {
+      "Bands (--products): svf (cosine-weighted, horizontal surface), svf_surface (the cell's tilted surface), "
+      "sky_visibility (solid-angle fraction), openness_positive, openness_negative (degrees); raycast with --rays "
+      "adds svf_montecarlo and svf_montecarlo_stderr.");
+  return [o, preview, products] {
+    const std::vector<const ProductBand*> chosen = chosen_products(*products);
     if (!preview->empty()) check_output_writable(*preview, o->out.overwrite);
     ThreadLimit limit(o->out.threads);
     HorizonJobOptions opts = *o;
-    opts.params.lower = true;  // negative openness needs the lowest angles
+    // Negative openness is the only product that needs the lowest angles: a second walk.
+    opts.params.lower = std::any_of(chosen.begin(), chosen.end(), [](const ProductBand* p) {
+      return p->grid == &SkyViewProducts::openness_negative;
+    });
     HorizonJob job = prepare_horizon_job(opts, "svf");
     // Horizons are held a part at a time (compute_sky_view), so memory does not grow with the
     // number of directions.
@@ -38,24 +98,9 @@ Runner setup(CLI::App& app) {
     wo.overwrite = o->out.overwrite;
     wo.metadata = job.metadata;
     const int w = job.terrain.width(), h = job.terrain.height();
-    std::vector<OutputBand> bands{
-        {"svf", "1", p.svf.data(), {{"DEFINITION", "1 - mean sin^2(max(h,0)); cosine-weighted, horizontal"}}},
-        {"svf_surface",
-         "1",
-         p.svf_surface.data(),
-         {{"DEFINITION", "view factor of the tilted cell surface (Horn normal) to the unobstructed sky"}}},
-        {"sky_visibility",
-         "1",
-         p.sky_visibility.data(),
-         {{"DEFINITION", "1 - mean sin(max(h,0)); solid-angle fraction of the hemisphere"}}},
-        {"openness_positive",
-         "degree",
-         p.openness_positive.data(),
-         {{"DEFINITION", "mean zenith angle of the horizon (Yokoyama 2002)"}}},
-        {"openness_negative",
-         "degree",
-         p.openness_negative.data(),
-         {{"DEFINITION", "mean nadir angle of the lowest terrain (Yokoyama 2002)"}}}};
+    std::vector<OutputBand> bands;
+    for (const ProductBand* c : chosen)
+      bands.push_back({c->name, c->unit, (p.*(c->grid)).data(), {{"DEFINITION", c->definition}}});
     if (!p.svf_montecarlo.values().empty()) {
       bands.push_back({"svf_montecarlo",
                        "1",

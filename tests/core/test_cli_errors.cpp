@@ -189,4 +189,31 @@ TEST_F(CliErrors, HorizonBandsAreTheEnginesDirections) {
   }
 }
 
+// --products writes the bands asked for, in that order, with the values of the full run (the
+// horizons do not depend on whether the lowest angles are walked too).
+TEST_F(CliErrors, ProductsChooseTheBands) {
+  const std::string all = dir + "/all.tif", two = dir + "/two.tif";
+  ASSERT_EQ(run_skyview("svf " + good + " " + all + " --directions 16", dir).exit_code, 0);
+  ASSERT_EQ(run_skyview("svf " + good + " " + two + " --directions 16 --products sky_visibility,svf", dir).exit_code,
+            0);
+  GDALDatasetUniquePtr a(GDALDataset::Open(all.c_str(), GDAL_OF_RASTER));
+  GDALDatasetUniquePtr b(GDALDataset::Open(two.c_str(), GDAL_OF_RASTER));
+  ASSERT_TRUE(a && b);
+  ASSERT_EQ(b->GetRasterCount(), 2);
+  EXPECT_STREQ(b->GetRasterBand(1)->GetDescription(), "sky_visibility");
+  EXPECT_STREQ(b->GetRasterBand(2)->GetDescription(), "svf");
+  const int n = a->GetRasterXSize() * a->GetRasterYSize();
+  std::vector<float> va(n), vb(n);
+  for (auto [band_all, band_two] : {std::pair{3, 1}, std::pair{1, 2}}) {
+    ASSERT_EQ(a->GetRasterBand(band_all)->RasterIO(GF_Read, 0, 0, 21, 21, va.data(), 21, 21, GDT_Float32, 0, 0),
+              CE_None);
+    ASSERT_EQ(b->GetRasterBand(band_two)->RasterIO(GF_Read, 0, 0, 21, 21, vb.data(), 21, 21, GDT_Float32, 0, 0),
+              CE_None);
+    EXPECT_EQ(va, vb) << "band " << band_all;
+  }
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --products svf,tilt", dir),
+                        "unknown product 'tilt'", 2);
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --products svf,svf", dir), "given twice", 2);
+}
+
 }  // namespace
