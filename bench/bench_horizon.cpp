@@ -1,10 +1,15 @@
 // Throughput of every horizon method in cell-directions per second on a synthetic city DSM.
 // Run: ./build/bench_horizon [--benchmark_filter=...]; sizes via SKYVIEW_BENCH_SIZE (default 2000).
 #include <benchmark/benchmark.h>
+#include <tbb/parallel_for.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <map>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "skyview/horizon_engine.h"
 #include "skyview/sky_view.h"
@@ -111,6 +116,97 @@ void BM_SvfStreamed16(benchmark::State& state) {
   });
 }
 
+// The cost floor of the hull sweep's design, for judging any redesign against the 100 M
+// cell-directions/s target: lines one cell apart (drift 0.3 cell per row, bands of 256 lines
+// over both cores), one sample per line and row read linearly between cell centres, each pushed
+// onto its line's upper hull (Andrew's monotone chain, float). No minor crossings, no exact near
+// field, no angles written: what the sweep does is a superset of one of these.
+// - PushTangent: the design. A sample's horizon is its tangent to the hull, which is its
+//   neighbour once pushed: free.
+// - DelayedQueries: what exactness along each cell's own ray needs. Samples join their hull 64 rows
+//   late (the exact near field covers those), so a cell's tangent is a query: it asks the two
+//   lines beside it, the nearest hull point first, else a bisection.
+struct HullPoint {
+  float t, z;
+};
+bool rises(const HullPoint& a, const HullPoint& b, const HullPoint& p) {
+  return (a.z - p.z) * (b.t - p.t) < (b.z - p.z) * (a.t - p.t);
+}
+void push(HullPoint* h, int& n, const HullPoint& p) {
+  while (n >= 2 && !rises(h[n - 2], h[n - 1], p)) --n;
+  h[n++] = p;
+}
+float tangent_slope(const HullPoint* h, int n, const HullPoint& p) {
+  int lo = n - 1;
+  if (n > 1 && !rises(h[n - 2], h[n - 1], p)) {
+    int hi = n - 1;  // rises into lo (or lo is the farthest point), not into hi
+    lo = 0;
+    while (hi - lo > 1) {
+      const int mid = (lo + hi) / 2;
+      (rises(h[mid - 1], h[mid], p) ? lo : hi) = mid;
+    }
+  }
+  return (h[lo].z - p.z) / (h[lo].t - p.t);
+}
+
+template <bool kDelayed>
+void run_hull_floor(benchmark::State& state) {
+  const skyview::Terrain& t = city(bench_size());
+  const int W = t.width(), H = t.height();
+  constexpr int kBand = 256, kLag = 64, kPasses = 16;
+  constexpr double kDrift = 0.3;
+  const float* z = t.heights.data();
+  const int first = -static_cast<int>(kDrift * H) - 1, bands = (W - first) / kBand + 1;
+  for (auto _ : state) {
+    for (int pass = 0; pass < kPasses; ++pass) {
+      tbb::parallel_for(0, bands, [&](int band) {
+        const int m0 = first + band * kBand;
+        std::unique_ptr<HullPoint[]> arena(new HullPoint[static_cast<std::size_t>(kBand + 1) * (H + 1)]);
+        std::vector<int> n(kBand + 1, 0);
+        std::vector<float> slope(kBand + 1);
+        float sink = 0;
+        for (int row = 0; row < H; ++row) {
+          const int sample_row = kDelayed ? row - kLag : row;
+          if (sample_row >= 0) {
+            const double shift = sample_row * kDrift, base = std::floor(shift);
+            const float f = static_cast<float>(shift - base);
+            const float* zr = z + static_cast<std::size_t>(sample_row) * W;
+            for (int l = 0; l <= kBand; ++l) {
+              const int c = m0 + static_cast<int>(base) + l;
+              if (c < 0 || c + 1 >= W) continue;
+              const HullPoint p{-static_cast<float>(sample_row), zr[c] + f * (zr[c + 1] - zr[c])};
+              HullPoint* h = arena.get() + static_cast<std::size_t>(l) * (H + 1);
+              push(h, n[l], p);
+              if (!kDelayed && n[l] > 1) sink += (h[n[l] - 2].z - p.z) / (h[n[l] - 2].t - p.t);
+            }
+          }
+          if (kDelayed) {
+            const int cell0 = m0 + static_cast<int>(std::floor(row * kDrift)) + 1;
+            const float* zr = z + static_cast<std::size_t>(row) * W;
+            for (int l = 0; l < kBand; ++l) {
+              const int c = cell0 + l;
+              if (c < 0 || c >= W) continue;
+              const HullPoint p{-static_cast<float>(row), zr[c]};
+              float best = -1e30f;
+              for (int side = 0; side < 2; ++side) {
+                if (n[l + side] > 0)
+                  best = std::max(
+                      best, tangent_slope(arena.get() + static_cast<std::size_t>(l + side) * (H + 1), n[l + side], p));
+              }
+              sink += best;
+            }
+          }
+        }
+        benchmark::DoNotOptimize(sink);
+      });
+    }
+  }
+  state.counters["cell_dirs_per_s"] =
+      benchmark::Counter(static_cast<double>(W) * H * kPasses, benchmark::Counter::kIsIterationInvariantRate);
+}
+void BM_HullFloorPushTangent(benchmark::State& s) { run_hull_floor<false>(s); }
+void BM_HullFloorDelayedQueries(benchmark::State& s) { run_hull_floor<true>(s); }
+
 }  // namespace
 
 BENCHMARK(BM_Sampled16x16)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
@@ -121,4 +217,6 @@ BENCHMARK(BM_Sweep16)->Arg(64)->Arg(8)->Arg(1)->Unit(benchmark::kMillisecond)->U
 BENCHMARK(BM_Sweep16WithLower)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_SvfWhole16)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_SvfStreamed16)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+BENCHMARK(BM_HullFloorPushTangent)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+BENCHMARK(BM_HullFloorDelayedQueries)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK_MAIN();
