@@ -1,0 +1,46 @@
+// --max-error: the cheapest calibrated configuration whose worst p99 svf error is within the request.
+#include "skyview/accuracy_choice.h"
+#include "skyview/error.h"
+#include "test_support.h"
+
+using namespace skyview;
+
+namespace {
+
+TEST(AccuracyChoice, PicksTheCheapestEntryWithinTheRequest) {
+  HorizonParams base;
+  base.curvature = "off";
+  base.radius = 123.0;
+  for (double requested : {0.2, 0.05, 0.02, 0.006, 0.003}) {
+    const AccuracyChoice c = choose_for_max_error(requested, base);
+    EXPECT_LE(c.entry.worst_p99, requested);
+    for (const CalibrationEntry& e : calibration_table()) {
+      if (e.worst_p99 <= requested) {
+        EXPECT_GE(e.ns_per_cell, c.entry.ns_per_cell) << e.method << " " << e.directions;
+      }
+    }
+    // The entry's method and parameters are what runs; the rest of the user's parameters stay.
+    EXPECT_EQ(c.params.directions, c.entry.directions);
+    EXPECT_EQ(c.params.samples, c.entry.samples);
+    EXPECT_EQ(c.params.radius, 0.0);  // the method's calibrated default
+    EXPECT_EQ(c.params.curvature, "off");
+    EXPECT_NO_THROW(make_horizon_engine(c.method, c.params));
+  }
+  // A looser request never costs more.
+  EXPECT_LE(choose_for_max_error(0.05, base).entry.ns_per_cell, choose_for_max_error(0.005, base).entry.ns_per_cell);
+}
+
+TEST(AccuracyChoice, RefusesWhatNoConfigurationReaches) {
+  double best = 1.0;
+  for (const CalibrationEntry& e : calibration_table()) best = std::min(best, e.worst_p99);
+  try {
+    choose_for_max_error(best / 2, HorizonParams{});
+    FAIL() << "no configuration reaches " << best / 2;
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the best is"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(choose_for_max_error(0.0, HorizonParams{}), Error);
+  EXPECT_THROW(choose_for_max_error(1.0, HorizonParams{}), Error);
+}
+
+}  // namespace
