@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "skyview/error.h"
+#include "skyview/raster_io.h"
 
 namespace skyview {
 
@@ -173,7 +174,8 @@ std::string bench_to_markdown(const std::string& raster, const BenchReference& r
   return s.str();
 }
 
-void plot_bench(const std::string& png_path, const std::string& title, const std::vector<BenchResult>& results) {
+void plot_bench(const std::string& png_path, const std::string& title, const std::vector<BenchResult>& results,
+                bool overwrite) {
   const int W = 900, H = 600, left = 90, right = 30, top = 50, bottom = 70;
   cv::Mat img(H, W, CV_8UC3, cv::Scalar(255, 255, 255));
   double tmin = 1e30, tmax = 0, emin = 1e30, emax = 0;
@@ -230,7 +232,9 @@ void plot_bench(const std::string& png_path, const std::string& title, const std
     y += 20;
   }
   cv::putText(img, "line: Pareto front", cv::Point(W - 160, y + 5), cv::FONT_HERSHEY_SIMPLEX, 0.45, black);
-  if (!cv::imwrite(png_path, img)) throw Error("cannot write the plot '" + png_path + "'");
+  std::vector<unsigned char> png;
+  if (!cv::imencode(".png", img, png)) throw Error("cannot encode the plot '" + png_path + "'");
+  write_output_file(png_path, std::string(png.begin(), png.end()), overwrite);
 }
 
 }  // namespace skyview

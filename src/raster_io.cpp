@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <mutex>
 #include <sstream>
@@ -207,6 +208,31 @@ std::string temporary_name(const std::string& path) {
   name << "." << p.stem().string() << ".skyview-tmp-" << ::getpid() << p.extension().string();
   return (p.parent_path() / name.str()).string();
 }
+
+}  // namespace
+
+void write_output_file(const std::string& path, const std::string& bytes, bool overwrite) {
+  check_output_writable(path, overwrite);
+  const std::string tmp = temporary_name(path);
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << bytes;
+    out.close();
+    if (!out) {
+      std::error_code ignored;
+      std::filesystem::remove(tmp, ignored);
+      throw Error("cannot write '" + path + "'");
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    throw Error("cannot move the finished output into place at '" + path + "'");
+  }
+}
+
+namespace {
 
 // The output driver for `format`, refused when it writes no file.
 GDALDriver* output_driver(const std::string& format) {

@@ -1,7 +1,6 @@
 // skyview bench: speed against error of every horizon method on one raster.
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "command.h"
@@ -67,10 +66,10 @@ Runner setup(CLI::App& app) {
       }
     });
     const std::string name = std::filesystem::path(o->input).filename().string();
-    std::ofstream(o->out + "/bench.json") << bench_to_json(o->input, ref, results).dump(2) << "\n";
+    write_output_file(o->out + "/bench.json", bench_to_json(o->input, ref, results).dump(2) + "\n", o->overwrite);
     const std::string md = bench_to_markdown(name, ref, results);
-    std::ofstream(o->out + "/bench.md") << md;
-    plot_bench(o->out + "/bench.png", "skyview bench: " + name, results);
+    write_output_file(o->out + "/bench.md", md, o->overwrite);
+    plot_bench(o->out + "/bench.png", "skyview bench: " + name, results, o->overwrite);
     std::fputs(md.c_str(), stdout);
     return 0;
   };

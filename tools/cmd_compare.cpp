@@ -3,7 +3,6 @@
 // `skyview bench` reports.
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 
 #include <nlohmann/json.hpp>
 
@@ -47,7 +46,7 @@ Runner setup(CLI::App& app) {
     std::string value, reference, dem, json;
     int band = 1, ref_band = 0;
     double scale = 1.0, offset = 0.0, threshold = 0.01, max_slope = -1.0;
-    bool quiet = false;
+    bool quiet = false, overwrite = false;
   };
   auto o = std::make_shared<Options>();
   app.add_option("value", o->value, "Raster to judge")->required();
@@ -67,6 +66,7 @@ Runner setup(CLI::App& app) {
                  "Compare only cells whose ground slope on --dem is at most this (degrees)")
       ->check(CLI::Range(0.0, 90.0));
   app.add_option("--json", o->json, "Also write the statistics as JSON to this file ('-': standard output)");
+  app.add_flag("--overwrite", o->overwrite, "Replace an existing --json file");
   app.add_flag("-q,--quiet", o->quiet, "Print nothing but the JSON");
   app.footer(
       "Statistics of (value * scale + offset - reference) over the cells valid in both: RMSE, bias, 99th percentile "
@@ -76,6 +76,8 @@ Runner setup(CLI::App& app) {
   return [o] {
     if (o->max_slope >= 0.0 && o->dem.empty()) throw Error("--max-slope needs --dem, the elevation raster");
     if (!o->dem.empty() && o->max_slope < 0.0) throw Error("--dem is only read for --max-slope");
+    const bool json_file = !o->json.empty() && o->json != "-";
+    if (json_file) check_output_writable(o->json, o->overwrite);
     const int ref_band = o->ref_band > 0 ? o->ref_band : o->band;
     RasterBand value = read_band(o->value, o->band);
     const RasterBand reference = read_band(o->reference, ref_band);
@@ -122,12 +124,10 @@ Runner setup(CLI::App& app) {
           {"max_abs", e.max_abs},
           {"threshold", e.threshold},
           {"share_above", e.share_above}};
-      if (o->json == "-") {
-        std::printf("%s\n", j.dump(2).c_str());
+      if (json_file) {
+        write_output_file(o->json, j.dump(2) + "\n", o->overwrite);
       } else {
-        std::ofstream out(o->json);
-        out << j.dump(2) << "\n";
-        if (!out) throw Error("cannot write '" + o->json + "'");
+        std::printf("%s\n", j.dump(2).c_str());
       }
     }
     return 0;

@@ -49,7 +49,9 @@ std::vector<BenchResult> run_bench(const Terrain& terrain, const std::vector<Ben
 void mark_pareto_front(std::vector<BenchResult>& results);
 nlohmann::json bench_to_json(const std::string& raster, const BenchReference& ref, const std::vector<BenchResult>& r);
 std::string bench_to_markdown(const std::string& raster, const BenchReference& ref, const std::vector<BenchResult>& r);
-// Log-log plot of time against p99 svf error, one colour per method, the Pareto front joined.
-void plot_bench(const std::string& png_path, const std::string& title, const std::vector<BenchResult>& results);
+// Log-log plot of time against p99 svf error, one colour per method, the Pareto front joined;
+// written as write_output_file writes (refused if `png_path` exists and !overwrite).
+void plot_bench(const std::string& png_path, const std::string& title, const std::vector<BenchResult>& results,
+                bool overwrite);
 
 }  // namespace skyview

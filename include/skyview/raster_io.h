@@ -98,4 +98,10 @@ void write_preview_png(const std::string& path, int width, int height, const flo
 // Refuses early (before any computation) when an output exists and !overwrite.
 void check_output_writable(const std::string& path, bool overwrite);
 
+// Writes an output that is not a raster (a JSON or markdown report, an encoded plot) the way
+// rasters are written: under a temporary name beside `path`, renamed into place once complete.
+// Throws skyview::Error if `path` exists and !overwrite, or if writing fails (then nothing
+// appears at `path`).
+void write_output_file(const std::string& path, const std::string& bytes, bool overwrite);
+
 }  // namespace skyview

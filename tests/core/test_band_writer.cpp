@@ -1,5 +1,6 @@
 // BandWriter: bands written one at a time, in any order, appear at the path only when finished;
-// an abandoned writer leaves nothing behind and keeps what was there.
+// an abandoned writer leaves nothing behind and keeps what was there. write_output_file: the same
+// for files that are not rasters.
 #include <gdal_priv.h>
 
 #include <filesystem>
@@ -135,6 +136,24 @@ TEST_F(BandWriterTest, AbandonedLeavesNothingAndKeepsTheOldOutput) {
   std::ifstream in(path);
   std::string old((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_EQ(old, "an older output");
+}
+
+// Reports and plots go the same way: nothing replaced without overwrite, no temporary left.
+TEST(OutputFile, ReplacesOnlyWithOverwriteAndLeavesNoTemporary) {
+  const Scratch scratch;
+  auto contents = [&] {
+    std::ifstream in(scratch.path, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  const std::string bytes("a\0b\n", 4);
+  write_output_file(scratch.path, bytes, false);
+  EXPECT_EQ(contents(), bytes);
+  EXPECT_THROW(write_output_file(scratch.path, "new", false), skyview::Error);
+  EXPECT_EQ(contents(), bytes);
+  write_output_file(scratch.path, "new", true);
+  EXPECT_EQ(contents(), "new");
+  EXPECT_EQ(files_in(scratch.dir), 1u);
+  EXPECT_THROW(write_output_file(scratch.dir + "/no/such/folder.json", "x", true), skyview::Error);
 }
 
 }  // namespace

@@ -67,7 +67,7 @@ class CompareCli : public ::testing::Test {
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, std::string(std::istreambuf_iterator<char>(in), {})};
   }
   nlohmann::json stats(const std::string& args) const {
-    const RunResult r = run(args + " -q --json " + dir + "/stats.json");
+    const RunResult r = run(args + " -q --overwrite --json " + dir + "/stats.json");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     std::ifstream in(dir + "/stats.json");
     return nlohmann::json::parse(in);
@@ -109,6 +109,21 @@ TEST_F(CompareCli, MaxSlopeLeavesOutSteepCells) {
   // wall's height; along the wall Horn's differences cancel.
   EXPECT_EQ(flat["left_out_steep"], 22);
   EXPECT_EQ(flat["cells"], 78);
+}
+
+// The JSON report is an output like any other: an existing one is kept unless --overwrite.
+TEST_F(CompareCli, KeepsAnExistingJsonUnlessOverwrite) {
+  const std::string json = dir + "/kept.json";
+  std::ofstream(json) << "earlier";
+  const std::string args = dir + "/value.tif " + dir + "/reference.tif -q --json " + json;
+  const RunResult refused = run(args);
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_NE(refused.err.find("exists; use --overwrite"), std::string::npos) << refused.err;
+  std::ifstream kept(json);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(kept), {}), "earlier");
+  EXPECT_EQ(run(args + " --overwrite").exit_code, 0);
+  std::ifstream replaced(json);
+  EXPECT_EQ(nlohmann::json::parse(replaced)["cells"], 100);
 }
 
 TEST_F(CompareCli, RefusesRastersOnDifferentGrids) {
