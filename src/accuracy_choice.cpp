@@ -16,7 +16,7 @@ const std::vector<CalibrationEntry>& calibration_table() {
 }
 
 AccuracyChoice choose_for_max_error(double max_error, const HorizonParams& base) {
-  if (!(max_error > 0.0) || max_error >= 1.0) throw Error("--max-error must be between 0 and 1");
+  if (!(max_error > 0.0) || max_error > 1.0) throw Error("--max-error must be above 0 and at most 1");
   const CalibrationEntry* best = nullptr;
   const CalibrationEntry* most_accurate = nullptr;
   for (const auto& e : calibration_table()) {

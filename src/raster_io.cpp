@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -89,6 +90,18 @@ RawBand read_raw_band(const std::string& path, int band_index) {
     throw Error("cannot read band " + std::to_string(band_index) + " of '" + path + "': " + last_gdal_error());
   }
   r.nodata = band->GetNoDataValue(&r.has_nodata);
+  // Packed rasters (Int16 with a scale of 0.01, say) hold value = raw * scale + offset: unpack them,
+  // nodata first (it is a raw value), so that a scaled value can never pass for nodata.
+  int has_scale = 0, has_offset = 0;
+  const double scale = band->GetScale(&has_scale), offset = band->GetOffset(&has_offset);
+  if ((has_scale && scale != 1.0) || (has_offset && offset != 0.0)) {
+    if (!std::isfinite(scale) || scale == 0.0 || !std::isfinite(offset)) {
+      throw Error("band " + std::to_string(band_index) + " of '" + path + "' has an unusable scale or offset");
+    }
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (double& v : r.values) v = r.has_nodata && v == r.nodata ? nan : v * scale + offset;
+    if (r.has_nodata) r.nodata = nan;
+  }
   return r;
 }
 
@@ -194,9 +207,42 @@ Terrain read_terrain(const std::string& path, const ReadOptions& options, ReadRe
 void check_output_writable(const std::string& path, bool overwrite) {
   if (path.empty()) throw Error("no output file given");
   if (path_exists(path) && !overwrite) throw Error("output '" + path + "' exists; use --overwrite to replace it");
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
+    throw Error("output '" + path + "' exists and is not a regular file; give another path");
+  }
   const auto dir = std::filesystem::path(path).parent_path();
   if (!dir.empty() && !std::filesystem::is_directory(dir)) {
     throw Error("cannot write '" + path + "': folder '" + dir.string() + "' does not exist");
+  }
+}
+
+namespace {
+
+bool same_file(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  if (std::filesystem::exists(a, ec) && std::filesystem::exists(b, ec)) return std::filesystem::equivalent(a, b, ec);
+  const auto ca = std::filesystem::weakly_canonical(a, ec);
+  if (ec) return a == b;
+  const auto cb = std::filesystem::weakly_canonical(b, ec);
+  return ec ? a == b : ca == cb;
+}
+
+}  // namespace
+
+void check_outputs_apart(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs) {
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    if (outputs[i].empty()) continue;
+    for (const std::string& in : inputs) {
+      if (!in.empty() && same_file(outputs[i], in)) {
+        throw Error("output '" + outputs[i] + "' is also an input ('" + in + "'); give another output path");
+      }
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      if (!outputs[j].empty() && same_file(outputs[i], outputs[j])) {
+        throw Error("'" + outputs[j] + "' and '" + outputs[i] + "' name the same output file");
+      }
+    }
   }
 }
 
@@ -360,6 +406,12 @@ BandWriter::BandWriter(const std::string& path, int width, int height, int bands
   s.options = options;
   check_output_writable(path, options.overwrite);
   s.driver = output_driver(options.format);
+  // A format that cannot hold float32 would round svf to bytes with only a GDAL warning.
+  if (const char* types = s.driver->GetMetadataItem(GDAL_DMD_CREATIONDATATYPES);
+      types && !std::strstr(types, "Float32")) {
+    throw Error("GDAL format '" + options.format + "' cannot hold float32 values (it writes " + types +
+                "); choose GTiff, COG, HFA or netCDF");
+  }
   s.direct = CSLFetchBoolean(s.driver->GetMetadata(), GDAL_DCAP_CREATE, FALSE);
   if (s.direct) {
     const CPLStringList opts = creation_options(options.format, GDT_Float32, options.creation_options);

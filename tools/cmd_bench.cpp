@@ -50,7 +50,10 @@ Runner setup(CLI::App& app) {
     ThreadLimit limit(o->threads);
     const std::vector<std::string> names{"bench.json", "bench.md", "bench.png"};
     std::filesystem::create_directories(o->out);
-    for (const auto& n : names) check_output_writable(o->out + "/" + n, o->overwrite);
+    for (const auto& n : names) {
+      check_outputs_apart({o->out + "/" + n}, {o->input});
+      check_output_writable(o->out + "/" + n, o->overwrite);
+    }
     ReadOptions ro;
     ro.band = o->band;
     ro.z_scale = o->z_scale;

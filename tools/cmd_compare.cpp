@@ -56,16 +56,19 @@ Runner setup(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   app.add_option("--ref-band", o->ref_band, "Band of the reference (default: the same as -b)")
       ->check(CLI::PositiveNumber);
-  app.add_option("--scale", o->scale, "Multiply the judged values first (0.01 for percent)")->capture_default_str();
-  app.add_option("--offset", o->offset, "Then add this")->capture_default_str();
+  app.add_option("--scale", o->scale, "Multiply the judged values first (0.01 for percent)")
+      ->capture_default_str()
+      ->check(finite_number());
+  app.add_option("--offset", o->offset, "Then add this")->capture_default_str()->check(finite_number());
   app.add_option("--threshold", o->threshold, "Report the share of cells off by more than this")
       ->capture_default_str()
       ->check(non_negative_number());
   app.add_option("--dem", o->dem, "Elevation raster on the same grid, for --max-slope");
   app.add_option("--max-slope", o->max_slope,
                  "Compare only cells whose ground slope on --dem is at most this (degrees)")
-      ->check(CLI::Range(0.0, 90.0));
-  app.add_option("--json", o->json, "Also write the statistics as JSON to this file ('-': standard output)");
+      ->check(number_in(0.0, 90.0));
+  app.add_option("--json", o->json,
+                 "Also write the statistics as JSON to this file ('-': standard output, the summary then on stderr)");
   app.add_flag("--overwrite", o->overwrite, "Replace an existing --json file");
   app.add_flag("-q,--quiet", o->quiet, "Print nothing but the JSON");
   app.footer(
@@ -77,7 +80,10 @@ Runner setup(CLI::App& app) {
     if (o->max_slope >= 0.0 && o->dem.empty()) throw Error("--max-slope needs --dem, the elevation raster");
     if (!o->dem.empty() && o->max_slope < 0.0) throw Error("--dem is only read for --max-slope");
     const bool json_file = !o->json.empty() && o->json != "-";
-    if (json_file) check_output_writable(o->json, o->overwrite);
+    if (json_file) {
+      check_outputs_apart({o->json}, {o->value, o->reference, o->dem});
+      check_output_writable(o->json, o->overwrite);
+    }
     const int ref_band = o->ref_band > 0 ? o->ref_band : o->band;
     RasterBand value = read_band(o->value, o->band);
     const RasterBand reference = read_band(o->reference, ref_band);
@@ -107,9 +113,11 @@ Runner setup(CLI::App& app) {
         what += "; " + std::to_string(steep) + " cells steeper than " + CLI::detail::to_string(o->max_slope) +
                 " degrees left out";
       }
-      std::printf("%lld cells compared: %s\n", static_cast<long long>(e.cells), what.c_str());
-      std::printf("rmse %.5f  bias %+.5f  p99 %.5f  max %.5f  share above %g: %.4f\n", e.rmse, e.bias, e.p99, e.max_abs,
-                  e.threshold, e.share_above);
+      // With the JSON on standard output the summary goes to stderr, so that the JSON parses.
+      std::FILE* summary = o->json == "-" ? stderr : stdout;
+      std::fprintf(summary, "%lld cells compared: %s\n", static_cast<long long>(e.cells), what.c_str());
+      std::fprintf(summary, "rmse %.5f  bias %+.5f  p99 %.5f  max %.5f  share above %g: %.4f\n", e.rmse, e.bias, e.p99,
+                   e.max_abs, e.threshold, e.share_above);
     }
     if (!o->json.empty()) {
       const nlohmann::json j = {

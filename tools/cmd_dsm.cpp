@@ -70,6 +70,10 @@ Runner setup(CLI::App& app) {
       "DEM, --dtm and footprint heights above the terrain use the clouds' ground returns (class 2, else the "
       "morphological filter), holes filled.");
   return [o] {
+    std::vector<std::string> inputs = o->dsm.dems;
+    inputs.insert(inputs.end(), o->dsm.points.begin(), o->dsm.points.end());
+    inputs.push_back(o->dsm.footprints);
+    check_outputs_apart({o->output, o->dtm}, inputs);
     check_output_writable(o->output, o->out.overwrite);
     if (!o->dtm.empty()) check_output_writable(o->dtm, o->out.overwrite);
     o->dsm.want_dtm = !o->dtm.empty();

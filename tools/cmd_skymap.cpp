@@ -59,6 +59,7 @@ int run(const SkymapOptions& o) {
           ? ""
           : (o.preview.empty() ? std::filesystem::path(o.output).replace_extension(".png").string() : o.preview);
   if (!preview.empty() && preview == o.output) throw Error("the preview would overwrite OUT; give --preview");
+  check_outputs_apart({o.output, preview}, {o.epw});
   check_output_writable(o.output, o.out.overwrite);
   if (!preview.empty()) check_output_writable(preview, o.out.overwrite);
   const auto sky = make_sky(o);

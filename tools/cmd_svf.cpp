@@ -72,6 +72,7 @@ Runner setup(CLI::App& app) {
       "adds svf_montecarlo and svf_montecarlo_stderr.");
   return [o, preview, products] {
     const std::vector<const ProductBand*> chosen = chosen_products(*products);
+    check_outputs_apart({o->output, *preview}, {o->input});
     if (!preview->empty()) check_output_writable(*preview, o->out.overwrite);
     ThreadLimit limit(o->out.threads);
     HorizonJobOptions opts = *o;

@@ -32,8 +32,8 @@ Runner setup(CLI::App& app) {
   app.add_option("--size", o->size, "Cells per side")->capture_default_str()->check(CLI::Range(3, 20000));
   app.add_option("--cell", o->cell, "Cell size in metres")->capture_default_str()->check(positive_number());
   app.add_option("--crs", o->crs, "CRS of the grid (projected, metres)")->capture_default_str();
-  app.add_option("--origin", o->x0, "Easting of the grid centre")->capture_default_str();
-  app.add_option("--northing", o->y0, "Northing of the grid centre")->capture_default_str();
+  app.add_option("--origin", o->x0, "Easting of the grid centre")->capture_default_str()->check(finite_number());
+  app.add_option("--northing", o->y0, "Northing of the grid centre")->capture_default_str()->check(finite_number());
   app.add_option("--seed", o->seed, "Random seed of the synthetic layout")->capture_default_str();
   app.add_option("--density", o->density, "lidar: returns per square metre")
       ->capture_default_str()

@@ -40,7 +40,7 @@ void add_output_options(CLI::App& app, OutputOptions& o) {
                  "TILED=YES COMPRESS=DEFLATE PREDICTOR=3");
   app.add_flag("--overwrite", o.overwrite, "Replace an existing output");
   app.add_flag("-q,--quiet", o.quiet, "No progress on stderr");
-  app.add_option("--threads", o.threads, "Worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  app.add_option("--threads", o.threads, "Worker threads (0 = all cores)")->check(non_negative_number());
 }
 
 ThreadLimit::ThreadLimit(int threads) {
@@ -70,6 +70,26 @@ const CLI::Validator& non_negative_number() {
       },
       "NONNEGATIVE");
   return v;
+}
+
+const CLI::Validator& finite_number() {
+  static const CLI::Validator v(
+      [](std::string& text) -> std::string {
+        double x = 0;
+        return CLI::detail::lexical_cast(text, x) && std::isfinite(x) ? "" : "must be a finite number";
+      },
+      "NUMBER");
+  return v;
+}
+
+CLI::Validator number_in(double lo, double hi) {
+  const std::string range = CLI::detail::to_string(lo) + " to " + CLI::detail::to_string(hi);
+  return CLI::Validator(
+      [lo, hi, range](std::string& text) -> std::string {
+        double x = 0;
+        return CLI::detail::lexical_cast(text, x) && x >= lo && x <= hi ? "" : "must be a number from " + range;
+      },
+      "[" + range + "]");
 }
 
 }  // namespace skyview::cli

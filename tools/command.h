@@ -42,6 +42,10 @@ void add_output_options(CLI::App& app, OutputOptions& o);
 // range up to 1.8e308).
 const CLI::Validator& positive_number();
 const CLI::Validator& non_negative_number();
+// Any number but NaN and infinities (CLI11 parses both).
+const CLI::Validator& finite_number();
+// A number in [lo, hi]; NaN fails (CLI::Range lets it through: every comparison with it is false).
+CLI::Validator number_in(double lo, double hi);
 
 // Limits oneTBB to `threads` workers while alive (0 = no limit).
 class ThreadLimit {

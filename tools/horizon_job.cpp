@@ -39,11 +39,13 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
   app.add_option("--curvature", o.params.curvature, "Earth curvature: auto, on, off")
       ->check(CLI::IsMember({"auto", "on", "off"}))
       ->capture_default_str();
-  app.add_option("--refraction", o.params.refraction, "Refraction coefficient with curvature")->capture_default_str();
+  app.add_option("--refraction", o.params.refraction, "Refraction coefficient with curvature")
+      ->capture_default_str()
+      ->check(finite_number());
   app.add_option("--max-error", o.max_error,
                  "Choose the cheapest method and parameters whose calibrated 99th-percentile svf error is below "
                  "this (overrides --method, --directions, --samples, --radius)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(number_in(0.0, 1.0));
   app.add_flag("!--no-early-exit", o.params.early_exit,
                "Disable early termination (march and sampled: the max-height pyramid; sweep: skipped far-field "
                "searches); same results");
@@ -51,6 +53,7 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
 }
 
 HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& command) {
+  check_outputs_apart({o.output}, {o.input});
   check_output_writable(o.output, o.out.overwrite);
   if (o.out.format == "MEM") throw Error("output format MEM writes no file; choose a file format");
   HorizonJob job;
@@ -58,7 +61,7 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   std::string method = o.method;
   HorizonParams params = o.params;
   std::optional<AccuracyChoice> choice;
-  if (o.max_error > 0.0) {
+  if (o.max_error >= 0.0) {
     choice = choose_for_max_error(o.max_error, o.params);
     method = choice->method;
     params = choice->params;

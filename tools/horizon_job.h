@@ -19,7 +19,7 @@ struct HorizonJobOptions {
   double z_scale = 1.0;
   std::string method = "sweep";  // exact and the fastest for a given error (docs/benchmarks.md)
   std::string edge = "open";
-  double max_error = 0.0;  // > 0: choose method and parameters for this p99 svf error
+  double max_error = -1.0;  // >= 0: choose method and parameters for this p99 svf error
   HorizonParams params;
   OutputOptions out;
 };

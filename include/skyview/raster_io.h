@@ -95,8 +95,13 @@ void write_terrain(const std::string& path, const Terrain& terrain, const WriteO
 void write_preview_png(const std::string& path, int width, int height, const float* values, double lo, double hi,
                        bool overwrite);
 
-// Refuses early (before any computation) when an output exists and !overwrite.
+// Refuses early (before any computation) when an output exists and !overwrite, or exists and is
+// not a regular file (a device or a folder is never replaced).
 void check_output_writable(const std::string& path, bool overwrite);
+
+// Refuses, before any computation, an output that is also an input or another output (by the
+// file it names: "./a.tif", a link to it and "a.tif" are one). Empty paths are left out.
+void check_outputs_apart(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs);
 
 // Writes an output that is not a raster (a JSON or markdown report, an encoded plot) the way
 // rasters are written: under a temporary name beside `path`, renamed into place once complete.

@@ -8,7 +8,7 @@
 namespace skyview::detail {
 
 double curvature_coefficient(const HorizonParams& params, double max_distance, double earth_radius) {
-  if (params.refraction < 0.0 || params.refraction >= 1.0) throw Error("--refraction must be in [0, 1)");
+  if (!(params.refraction >= 0.0 && params.refraction < 1.0)) throw Error("--refraction must be in [0, 1)");
   const double c = (1.0 - params.refraction) / (2.0 * earth_radius);
   if (params.curvature == "off") return 0.0;
   if (params.curvature == "on") return c;

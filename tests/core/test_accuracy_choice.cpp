@@ -1,4 +1,6 @@
 // --max-error: the cheapest calibrated configuration whose worst p99 svf error is within the request.
+#include <cmath>
+
 #include "skyview/accuracy_choice.h"
 #include "skyview/error.h"
 #include "test_support.h"
@@ -40,7 +42,12 @@ TEST(AccuracyChoice, RefusesWhatNoConfigurationReaches) {
     EXPECT_NE(std::string(e.what()).find("the best is"), std::string::npos) << e.what();
   }
   EXPECT_THROW(choose_for_max_error(0.0, HorizonParams{}), Error);
-  EXPECT_THROW(choose_for_max_error(1.0, HorizonParams{}), Error);
+  EXPECT_THROW(choose_for_max_error(1.5, HorizonParams{}), Error);
+  EXPECT_THROW(choose_for_max_error(std::nan(""), HorizonParams{}), Error);
+  // Any error at all: the cheapest entry of the table.
+  double cheapest = calibration_table().front().ns_per_cell;
+  for (const CalibrationEntry& e : calibration_table()) cheapest = std::min(cheapest, e.ns_per_cell);
+  EXPECT_EQ(choose_for_max_error(1.0, HorizonParams{}).entry.ns_per_cell, cheapest);
 }
 
 }  // namespace

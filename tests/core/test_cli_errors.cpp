@@ -1,6 +1,8 @@
 // Bad input to the executable: one clear line on stderr and a non-zero exit, never a crash.
 #include <sys/wait.h>
+#include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 
 #include <gdal_priv.h>
@@ -155,10 +157,81 @@ TEST_F(CliErrors, HorizonBandsNameTheirAzimuths) {
 }
 
 // GDAL's message for a format that cannot hold the bands breaks lines; the error stays one line.
+// Formats of bytes would round svf to 0 or 1 with only a warning: they are refused first.
 TEST_F(CliErrors, FormatThatCannotHoldTheBands) {
-  expect_one_line_error(run_skyview("horizon " + good + " " + dir + "/h.png -of PNG --directions 8", dir),
-                        "PNG driver doesn't support 8 bands");
-  EXPECT_FALSE(std::filesystem::exists(dir + "/h.png"));
+  expect_one_line_error(run_skyview("horizon " + good + " " + dir + "/h.asc -of AAIGrid --directions 8", dir),
+                        "driver doesn't support 8 bands");
+  EXPECT_FALSE(std::filesystem::exists(dir + "/h.asc"));
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/s.jpg -of JPEG", dir), "cannot hold float32");
+  EXPECT_FALSE(std::filesystem::exists(dir + "/s.jpg"));
+}
+
+// An output that names an input, another output, or something that is not a file is refused before
+// any work, with or without --overwrite; the input is left as it was.
+TEST_F(CliErrors, OutputsNeverReplaceInputsOrOtherOutputs) {
+  const auto size = std::filesystem::file_size(good);
+  const auto before = std::filesystem::last_write_time(good);
+  expect_one_line_error(run_skyview("svf " + good + " " + good + " --overwrite", dir), "is also an input");
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/./good.tif --overwrite", dir), "is also an input");
+  std::filesystem::create_symlink(good, dir + "/link.tif");
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/link.tif --overwrite", dir), "is also an input");
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --preview " + good + " --overwrite", dir),
+                        "is also an input");
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --preview " + dir + "/o.tif", dir),
+                        "name the same output file");
+  EXPECT_FALSE(std::filesystem::exists(dir + "/o.tif"));
+  EXPECT_EQ(std::filesystem::file_size(good), size);
+  EXPECT_EQ(std::filesystem::last_write_time(good), before);
+  std::filesystem::create_directory(dir + "/folder.tif");
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/folder.tif --overwrite", dir),
+                        "is not a regular file");
+  EXPECT_TRUE(std::filesystem::is_directory(dir + "/folder.tif"));
+}
+
+// NaN passes every range check by comparison; the numbers that steer a run refuse it, and an
+// accuracy of 0 is refused rather than ignored.
+TEST_F(CliErrors, NumbersThatSteerTheRunMustBeNumbers) {
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --refraction nan", dir),
+                        "--refraction: must be a finite number", 2);
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --max-error nan", dir),
+                        "--max-error: must be a number from 0 to 1", 2);
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --max-error 0", dir),
+                        "--max-error must be above 0");
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --threads -1", dir),
+                        "--threads: must be zero or positive", 2);
+  EXPECT_FALSE(std::filesystem::exists(dir + "/o.tif"));
+}
+
+// Heights packed as integers with a scale and an offset (value = raw * scale + offset) are read
+// unpacked; their nodata is a raw value.
+TEST(PackedRasters, ScaleAndOffsetAreApplied) {
+  const std::string dir = temp_dir("packed"), path = dir + "/packed.tif";
+  {
+    GDALAllRegister();
+    GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName("GTiff");
+    GDALDatasetUniquePtr ds(gtiff->Create(path.c_str(), 3, 2, 1, GDT_Int16, nullptr));
+    ASSERT_TRUE(ds);
+    const GeoReference g = local_grid(3, 2, 1.0);
+    double gt[6];
+    std::copy(g.geotransform.begin(), g.geotransform.end(), gt);
+    ds->SetGeoTransform(gt);
+    GDALRasterBand* band = ds->GetRasterBand(1);
+    band->SetScale(0.01);
+    band->SetOffset(100.0);
+    band->SetNoDataValue(-32768);
+    std::int16_t raw[6] = {0, 150, -200, 12345, -32768, 7};
+    ASSERT_EQ(band->RasterIO(GF_Write, 0, 0, 3, 2, raw, 3, 2, GDT_Int16, 0, 0), CE_None);
+  }
+  const Terrain t = read_terrain(path, ReadOptions{});
+  const double want[6] = {100.0, 101.5, 98.0, 223.45, std::nan(""), 100.07};
+  for (int i = 0; i < 6; ++i) {
+    const double got = t.base_height + t.heights(i % 3, i / 3);
+    if (std::isnan(want[i])) {
+      EXPECT_TRUE(std::isnan(t.heights(i % 3, i / 3))) << i;
+    } else {
+      EXPECT_NEAR(got, want[i], 1e-4) << i;
+    }
+  }
 }
 
 // `skyview horizon` writes each band as the method finds it (the sweep hands directions over one at
