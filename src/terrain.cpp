@@ -37,4 +37,30 @@ Terrain crop_terrain(const Terrain& t, const Window& w, int halo, Window& inner)
   return out;
 }
 
+Terrain extend_at_raster_edges(const Terrain& t, const Window& w, Window& inner) {
+  const int full_w = t.full_width > 0 ? t.full_width : t.width();
+  const int full_h = t.full_height > 0 ? t.full_height : t.height();
+  const int left = t.origin_col == 0 ? 1 : 0, top = t.origin_row == 0 ? 1 : 0;
+  const int right = t.origin_col + t.width() == full_w ? 1 : 0, bottom = t.origin_row + t.height() == full_h ? 1 : 0;
+  const int W = t.width(), H = t.height();
+  Terrain out;
+  out.heights = Grid<float>(W + left + right, H + top + bottom);
+  for (int r = 0; r < out.height(); ++r) {
+    const int src_r = std::clamp(r - top, 0, H - 1);
+    float* row = &out.heights(0, r);
+    std::copy_n(&t.heights(0, src_r), W, row + left);
+    if (left) row[0] = row[1];
+    if (right) row[W + left] = row[W + left - 1];
+  }
+  out.base_height = t.base_height;
+  out.frame = t.frame;
+  out.georef = t.georef.window(-left, -top);
+  out.origin_col = t.origin_col - left;
+  out.origin_row = t.origin_row - top;
+  out.full_width = full_w;
+  out.full_height = full_h;
+  inner = {w.col0 + left, w.row0 + top, w.cols, w.rows};
+  return out;
+}
+
 }  // namespace skyview

@@ -67,18 +67,26 @@ class HorizonEngine {
   virtual double radius() const = 0;
   // The parameters it runs with, the method's defaults filled in.
   virtual const HorizonParams& params() const = 0;
-  // Fills `out` for the cells of `window`; terrain outside the window (the halo) occludes.
-  virtual void compute(const Terrain& terrain, const Window& window, HorizonField& out,
-                       ProgressCounter& progress) const = 0;
+  // Fills `out` for the cells of `window`; terrain outside the window (the halo) occludes. Every
+  // method reads the same surface: the buffer extended at the raster's edges
+  // (extend_at_raster_edges), then its mesh over cell centres.
+  void compute(const Terrain& terrain, const Window& window, HorizonField& out, ProgressCounter& progress) const;
   // The same horizons handed to `take` in batches, in order of direction, for products that need
   // not keep them all (SkyViewSums). `out` gets what the method gives besides the planes (rotation,
   // Monte-Carlo svf) and its size; by default compute() fills all of it and `take` gets one batch.
   // Methods that find one direction at a time (the sweep) keep only the directions in progress.
-  virtual void compute_directions(const Terrain& terrain, const Window& window, HorizonField& out,
-                                  ProgressCounter& progress, const DirectionBatchSink& take) const;
+  void compute_directions(const Terrain& terrain, const Window& window, HorizonField& out, ProgressCounter& progress,
+                          const DirectionBatchSink& take) const;
   // True where compute_directions holds only the directions in progress (otherwise summing the
   // products as they arrive saves no memory).
   virtual bool streams_directions() const { return false; }
+
+ protected:
+  // What each method does, on the extended buffer.
+  virtual void compute_window(const Terrain& terrain, const Window& window, HorizonField& out,
+                              ProgressCounter& progress) const = 0;
+  virtual void compute_window_directions(const Terrain& terrain, const Window& window, HorizonField& out,
+                                         ProgressCounter& progress, const DirectionBatchSink& take) const;
 };
 
 // Horizons held at a time, in bytes, by what goes by blocks of rows (compute_by_row_blocks).

@@ -25,9 +25,23 @@ double HorizonField::azimuth(std::size_t cell, int k) const {
   return sector_azimuth(k, directions) + (rotation.empty() ? 0.0 : rotation[cell]);
 }
 
+void HorizonEngine::compute(const Terrain& terrain, const Window& window, HorizonField& out,
+                            ProgressCounter& progress) const {
+  Window inner;
+  const Terrain extended = extend_at_raster_edges(terrain, window, inner);
+  compute_window(extended, inner, out, progress);
+}
+
 void HorizonEngine::compute_directions(const Terrain& terrain, const Window& window, HorizonField& out,
                                        ProgressCounter& progress, const DirectionBatchSink& take) const {
-  compute(terrain, window, out, progress);
+  Window inner;
+  const Terrain extended = extend_at_raster_edges(terrain, window, inner);
+  compute_window_directions(extended, inner, out, progress, take);
+}
+
+void HorizonEngine::compute_window_directions(const Terrain& terrain, const Window& window, HorizonField& out,
+                                              ProgressCounter& progress, const DirectionBatchSink& take) const {
+  compute_window(terrain, window, out, progress);
   take(0, out.directions, out.upper.data(), out.lower.empty() ? nullptr : out.lower.data());
 }
 

@@ -55,8 +55,8 @@ class MarchEngine final : public HorizonEngine {
   }
   double radius() const override { return p_.radius; }
   const HorizonParams& params() const override { return p_; }
-  void compute(const Terrain& terrain, const Window& window, HorizonField& out,
-               ProgressCounter& progress) const override {
+  void compute_window(const Terrain& terrain, const Window& window, HorizonField& out,
+                      ProgressCounter& progress) const override {
     ScanSettings s = scan_settings(p_, terrain);
     scan_rays(terrain, window, out, progress, s, EveryCrossing{p_.radius});
   }

@@ -1,5 +1,6 @@
-// The ray-cast reference. The terrain becomes a triangle mesh over cell centres: each quad of
-// four valid centres is split along its lower diagonal, so the mesh is linear along grid lines,
+// The ray-cast reference. The terrain (the buffer as HorizonEngine::compute extends it at the
+// raster's edges, so at least three cells each way) becomes a triangle mesh over cell centres:
+// each quad of four valid centres is split along its lower diagonal, so the mesh is linear along grid lines,
 // exactly as the march and the sweep read it, and its creases inside a quad are valleys, so no
 // ray finds a higher point inside a quad than on its edges: all methods see one surface. A quad
 // with one nodata corner keeps the triangle of the other three; one with more is left open
@@ -56,15 +57,13 @@ void embree_error(void* user, RTCError code, const char* message) {
 struct EyeContext {
   RTCIntersectContext base;  // first, so that Embree's pointer to it is one to the whole
   unsigned vertex = 0;       // the eye's vertex in the mesh over cell centres
-  unsigned ribbon = 0;       // on a one-row or one-column raster: the first of its two ribbon vertices
 };
 
-// What the filter and the horizon search know of a geometry: its triangles and vertices (Embree
-// owns both buffers), and whether it is the ribbon.
+// What the filter and the horizon search know of the mesh: its triangles and vertices (Embree
+// owns both buffers).
 struct Triangles {
   const unsigned* indices = nullptr;
   const float* vertices = nullptr;  // x, y, z per vertex
-  bool ribbon = false;
 };
 
 void reject_own_triangles(const RTCFilterFunctionNArguments* args) {
@@ -73,8 +72,7 @@ void reject_own_triangles(const RTCFilterFunctionNArguments* args) {
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
     const unsigned* v = mesh->indices + 3 * RTCHitN_primID(args->hit, args->N, i);
-    auto own = [&](unsigned x) { return mesh->ribbon ? x == eye->ribbon || x == eye->ribbon + 1 : x == eye->vertex; };
-    if (own(v[0]) || own(v[1]) || own(v[2])) args->valid[i] = 0;
+    if (v[0] == eye->vertex || v[1] == eye->vertex || v[2] == eye->vertex) args->valid[i] = 0;
   }
 }
 
@@ -157,17 +155,16 @@ class TerrainMesh {
         next += side.n;
       }
     }
-    if (w == 1 || h == 1) add_ribbon(device, t, sign, geom);
-    if (idx.empty()) idx = {0, 0, 0};  // a degenerate triangle keeps Embree happy on tiny rasters
+    if (idx.empty()) idx = {0, 0, 0};  // a degenerate triangle keeps Embree happy where all is nodata
     auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                               3 * sizeof(unsigned), idx.size() / 3));
     std::copy(idx.begin(), idx.end(), ib);
-    mesh_ = {ib, v, false};
+    mesh_ = {ib, v};
     rtcSetGeometryUserData(geom, &mesh_);
     rtcSetGeometryOccludedFilterFunction(geom, reject_own_triangles);
     rtcSetGeometryIntersectFilterFunction(geom, reject_own_triangles);
     rtcCommitGeometry(geom);
-    mesh_id_ = rtcAttachGeometry(scene_.get(), geom);
+    rtcAttachGeometry(scene_.get(), geom);
     rtcReleaseGeometry(geom);
     rtcCommitScene(scene_.get());
   }
@@ -177,7 +174,6 @@ class TerrainMesh {
     EyeContext context;
     rtcInitIntersectContext(&context.base);
     context.vertex = static_cast<unsigned>(row * width_ + col);
-    context.ribbon = 2u * static_cast<unsigned>(std::max(col, row));  // one of them is 0 on a ribbon
     return context;
   }
 
@@ -251,7 +247,7 @@ class TerrainMesh {
     const double fx = x - x0, fy = y - y0;
     const int x1 = std::min(x0 + 1, t_.width() - 1), y1 = std::min(y0 + 1, t_.height() - 1);
     const double za = t_.heights(x0, y0), zb = t_.heights(x1, y0), zd = t_.heights(x0, y1), ze = t_.heights(x1, y1);
-    // Along a grid line only its two ends count (a one-row or one-column raster has nothing else).
+    // Along a grid line only its two ends count.
     if (fy == 0.0) return fx == 0.0 ? za : za + fx * (zb - za);
     if (fx == 0.0) return za + fy * (zd - za);
     if (sign_ * (za + ze) <= sign_ * (zb + zd)) {  // split along a-e
@@ -285,16 +281,15 @@ class TerrainMesh {
       const double end = end_slope(col, row, sin_az, cos_az, range);
       return std::tan(elevation) < end ? std::atan(end) : std::numeric_limits<double>::quiet_NaN();
     }
-    const Triangles& mesh = hit.hit.geomID == mesh_id_ ? mesh_ : ribbon_;
-    const unsigned* tri = mesh.indices + 3 * hit.hit.primID;
+    const unsigned* tri = mesh_.indices + 3 * hit.hit.primID;
     // The vertical plane through the eye along (sin_az, cos_az) cuts the triangle along a segment;
     // along a straight segment the elevation angle is monotone, so its top is at an end (the end
     // beyond the radius moved back to it).
     const double ex = hit.ray.org_x, ey = hit.ray.org_y;
     double near_h = kInf, near_up = 0, far_h = -kInf, far_up = 0;
     for (int e = 0; e < 3; ++e) {
-      const float* a = mesh.vertices + 3 * tri[e];
-      const float* b = mesh.vertices + 3 * tri[(e + 1) % 3];
+      const float* a = mesh_.vertices + 3 * tri[e];
+      const float* b = mesh_.vertices + 3 * tri[(e + 1) % 3];
       const double sa = cos_az * (a[0] - ex) - sin_az * (a[1] - ey), sb = cos_az * (b[0] - ex) - sin_az * (b[1] - ey);
       if ((sa > 0 && sb > 0) || (sa < 0 && sb < 0)) continue;  // the edge stays on one side of the plane
       const double f = sa == sb ? 0.0 : sa / (sa - sb);
@@ -315,45 +310,6 @@ class TerrainMesh {
     return top;
   }
 
-  // A single row or column has no quads: its profile is extruded half a cell to each side so
-  // that rays along it still meet the terrain.
-  void add_ribbon(RTCDevice device, const Terrain& t, double sign, RTCGeometry) {
-    const int n = std::max(t.width(), t.height());
-    const bool row = t.height() == 1;
-    RTCGeometry ribbon = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(ribbon, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                          3 * sizeof(float), 2 * static_cast<std::size_t>(n)));
-    for (int i = 0; i < n; ++i) {
-      const float z = row ? t.heights(i, 0) : t.heights(0, i);
-      for (int side = 0; side < 2; ++side) {
-        const double off = side == 0 ? -0.5 : 0.5;
-        const double c = row ? i : off, r = row ? off : i;
-        float* p = v + 3 * (2 * static_cast<std::size_t>(i) + side);
-        p[0] = static_cast<float>(j_.a * c + j_.b * r);
-        p[1] = static_cast<float>(j_.c * c + j_.d * r);
-        p[2] = std::isnan(z) ? 0.0f : static_cast<float>(sign * z);
-      }
-    }
-    std::vector<unsigned> idx;
-    for (int i = 0; i + 1 < n; ++i) {
-      const bool valid = row ? t.valid(i, 0) && t.valid(i + 1, 0) : t.valid(0, i) && t.valid(0, i + 1);
-      if (!valid) continue;
-      const unsigned a = 2 * i, b = a + 1, c = a + 2, d = a + 3;
-      idx.insert(idx.end(), {a, b, d, a, d, c});
-    }
-    if (idx.empty()) idx = {0, 0, 0};
-    auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(ribbon, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                              3 * sizeof(unsigned), idx.size() / 3));
-    std::copy(idx.begin(), idx.end(), ib);
-    ribbon_ = {ib, v, true};
-    rtcSetGeometryUserData(ribbon, &ribbon_);
-    rtcSetGeometryOccludedFilterFunction(ribbon, reject_own_triangles);
-    rtcSetGeometryIntersectFilterFunction(ribbon, reject_own_triangles);
-    rtcCommitGeometry(ribbon);
-    rtcAttachGeometry(scene_.get(), ribbon);
-    rtcReleaseGeometry(ribbon);
-  }
-
  private:
   static constexpr double kInf = std::numeric_limits<double>::infinity();
   const Terrain& t_;
@@ -361,8 +317,7 @@ class TerrainMesh {
   Jacobian j_;
   ScenePtr scene_;
   int width_ = 0;
-  Triangles mesh_, ribbon_;  // the two geometries' buffers (Embree owns them)
-  unsigned mesh_id_ = RTC_INVALID_GEOMETRY_ID;
+  Triangles mesh_;  // the geometry's buffers (Embree owns them)
 };
 
 class RaycastEngine final : public HorizonEngine {
@@ -386,8 +341,8 @@ class RaycastEngine final : public HorizonEngine {
   double radius() const override { return p_.radius == 0.0 ? std::numeric_limits<double>::infinity() : p_.radius; }
   const HorizonParams& params() const override { return p_; }
 
-  void compute(const Terrain& terrain, const Window& window, HorizonField& out,
-               ProgressCounter& progress) const override {
+  void compute_window(const Terrain& terrain, const Window& window, HorizonField& out,
+                      ProgressCounter& progress) const override {
     DevicePtr device(rtcNewDevice(nullptr));
     if (!device) throw Error("cannot start Embree");
     if (!rtcGetDeviceProperty(device.get(), RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED)) {

@@ -708,8 +708,8 @@ class SweepEngine final : public HorizonEngine {
     const std::uint64_t n = static_cast<std::uint64_t>(p_.directions);
     return cells * (k + 1) / n - cells * k / n;
   }
-  void compute(const Terrain& terrain, const Window& window, HorizonField& out,
-               ProgressCounter& progress) const override {
+  void compute_window(const Terrain& terrain, const Window& window, HorizonField& out,
+                      ProgressCounter& progress) const override {
     out.resize(window.cols, window.rows, p_.directions, p_.lower);
     const Inputs in = inputs(terrain);
     tbb::parallel_for(0, p_.directions, [&](int k) {
@@ -726,8 +726,8 @@ class SweepEngine final : public HorizonEngine {
   // that next direction never waits, so it always arrives; `take` runs isolated, so that a worker
   // inside it cannot pick up a new direction (which might wait for the very direction it hands).
   bool streams_directions() const override { return true; }
-  void compute_directions(const Terrain& terrain, const Window& window, HorizonField& out, ProgressCounter& progress,
-                          const DirectionBatchSink& take) const override {
+  void compute_window_directions(const Terrain& terrain, const Window& window, HorizonField& out,
+                                 ProgressCounter& progress, const DirectionBatchSink& take) const override {
     out.resize(0, 0, p_.directions, false);
     out.cols = window.cols, out.rows = window.rows;
     const Inputs in = inputs(terrain);

@@ -240,4 +240,34 @@ TEST(HardCases, RayCastAlongAStreetBesideAWallStillMeetsTheBuildingAhead) {
   EXPECT_GT(march.upper_at(0, 0), 1.3);  // the building three cells north
 }
 
+// Just east of a UTM zone's central meridian grid north is a hair west of true north, so a ray due
+// east from the outer row climbs off the mesh over cell centres at once (sweep -2.2 and march 0
+// degrees against 24.4 on the next row, the bundled city.tif's outer columns up to 68 degrees off
+// looking north). The ring of boundary heights around the raster (extend_at_raster_edges) keeps
+// such rays on the terrain: every outer cell sees the ridge as the rows inside do.
+TEST(HardCases, RaysAlongTheRastersEdgeOnACentralMeridianSeeTheTerrainAhead) {
+  const int w = 100, h = 6;
+  GeoReference grid;
+  grid.has_geotransform = true;
+  grid.geotransform = {500000, 1, 0, 6400000, 0, -1};
+  grid.crs_wkt = wkt_of("EPSG:32633");
+  // A ridge along column 50, the same on every row.
+  Terrain t = rasterize([](double, double) { return 0.0; }, w, h, grid);
+  auto ridge_at = [](int c) { return 10.0 * std::exp(-(c - 50.0) * (c - 50.0) / 300.0); };
+  for (int r = 0; r < h; ++r) {
+    for (int c = 0; c < w; ++c) t.heights(c, r) = static_cast<float>(ridge_at(c));
+  }
+  // From column 30 looking east (and, by symmetry, from 70 looking west): the steepest vertex ahead.
+  double ridge = -M_PI / 2;
+  for (int c = 31; c < w; ++c) ridge = std::max(ridge, std::atan2(ridge_at(c) - ridge_at(30), c - 30.0));
+  ASSERT_GT(ridge, 0.4);
+  for (const char* m : kExactMethods) {
+    const HorizonField f = horizons(t, m, 4);  // north, east, south, west
+    for (int r = 0; r < h; ++r) {
+      EXPECT_NEAR(f.upper_at(f.cell(30, r), 1), ridge, 1e-3) << m << " row " << r << " east";
+      EXPECT_NEAR(f.upper_at(f.cell(70, r), 3), ridge, 1e-3) << m << " row " << r << " west";
+    }
+  }
+}
+
 }  // namespace
