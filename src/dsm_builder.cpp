@@ -7,8 +7,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <memory>
+#include <sstream>
 
 #include "skyview/error.h"
 #include "skyview/point_cloud.h"
@@ -21,6 +23,13 @@ namespace skyview {
 namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+// A number for a message (six significant digits).
+std::string number_text(double v) {
+  std::ostringstream out;
+  out << std::setprecision(6) << v;
+  return out.str();
+}
 
 struct CtDeleter {
   void operator()(OGRCoordinateTransformation* t) const { OGRCoordinateTransformation::DestroyCT(t); }
@@ -136,11 +145,16 @@ DsmResult build_dsm(const DsmOptions& o) {
     if (g != wkbPolygon && g != wkbMultiPolygon && g != wkbUnknown) {
       throw Error("'" + o.footprints + "' holds no polygons (its first layer is " + OGRGeometryTypeToName(g) + ")");
     }
-    if (!o.height_field.empty() && layer->GetLayerDefn()->GetFieldIndex(o.height_field.c_str()) < 0) {
-      throw Error("'" + o.footprints + "' has no field '" + o.height_field + "'");
-    }
-    if (!o.base_field.empty() && layer->GetLayerDefn()->GetFieldIndex(o.base_field.c_str()) < 0) {
-      throw Error("'" + o.footprints + "' has no field '" + o.base_field + "'");
+    // A text field (building names, say) would read as height 0 everywhere.
+    for (const std::string& field : {o.height_field, o.base_field}) {
+      if (field.empty()) continue;
+      const int index = layer->GetLayerDefn()->GetFieldIndex(field.c_str());
+      if (index < 0) throw Error("'" + o.footprints + "' has no field '" + field + "'");
+      const OGRFieldType type = layer->GetLayerDefn()->GetFieldDefn(index)->GetType();
+      if (type != OFTInteger && type != OFTInteger64 && type != OFTReal) {
+        throw Error("field '" + field + "' of '" + o.footprints + "' holds " + OGRFieldDefn::GetFieldTypeName(type) +
+                    ", not numbers");
+      }
     }
     if (first_crs.empty() && layer->GetSpatialRef()) {
       char* w = nullptr;
@@ -166,11 +180,13 @@ DsmResult build_dsm(const DsmOptions& o) {
     add_box(ext, gt[0], gt[3] + gt[5] * ds->GetRasterYSize(), gt[0] + gt[1] * ds->GetRasterXSize(), gt[3], t.get(),
             "'" + d + "'");
   }
+  Extent cloud_ext;  // returns lie in a closed box, rasters and polygons cover half-open cells
   for (const auto& c : clouds) {
     TransformPtr t;
     if (!cloud_crs(*c).empty()) t = transform(srs_from(cloud_crs(*c), c->path()), target, "'" + c->path() + "'");
     const double* b = c->bounds();
     add_box(ext, b[0], b[1], b[2], b[3], t.get(), "'" + c->path() + "'");
+    add_box(cloud_ext, b[0], b[1], b[2], b[3], t.get(), "'" + c->path() + "'");
   }
   if (layer) {
     OGREnvelope env;
@@ -181,13 +197,29 @@ DsmResult build_dsm(const DsmOptions& o) {
     }
   }
   if (res <= 0) res = 1.0;
-  if (o.te) ext = {(*o.te)[0], (*o.te)[1], (*o.te)[2], (*o.te)[3]};
+  if (o.te) {
+    ext = {(*o.te)[0], (*o.te)[1], (*o.te)[2], (*o.te)[3]};
+    if (!(ext.x1 > ext.x0 && ext.y1 > ext.y0))
+      throw Error("--te is xmin ymin xmax ymax, with xmin < xmax and ymin < ymax");
+  }
   if (ext.empty()) throw Error("the inputs cover no area (empty point cloud or extent)");
   const double x0 = std::floor(ext.x0 / res) * res, y1 = std::ceil(ext.y1 / res) * res;
-  const int width = static_cast<int>(std::ceil((ext.x1 - x0) / res - 1e-9));
-  const int height = static_cast<int>(std::ceil((y1 - ext.y0) / res - 1e-9));
-  if (width < 1 || height < 1 || static_cast<double>(width) * height > 4e9) {
-    throw Error("the output grid would be " + std::to_string(width) + " x " + std::to_string(height) + " cells");
+  double cols = std::ceil((ext.x1 - x0) / res - 1e-9), rows = std::ceil((y1 - ext.y0) / res - 1e-9);
+  // A cloud's largest x and smallest y lie on the grid's far edges, just outside its half-open cells.
+  if (!o.te && std::isfinite(cloud_ext.x0)) {
+    cols += cloud_ext.x1 >= x0 + cols * res ? 1 : 0;
+    rows += cloud_ext.y0 <= y1 - rows * res ? 1 : 0;
+  }
+  if (!(cols >= 1 && rows >= 1) || cols * rows > 4e9) {
+    throw Error("the output grid would be " + number_text(cols) + " x " + number_text(rows) +
+                " cells; check --res and the extent");
+  }
+  const int width = static_cast<int>(cols), height = static_cast<int>(rows);
+  if (target.IsGeographic() &&
+      (y1 > 90.0 + 1e-9 || y1 - height * res < -90.0 - 1e-9 || x0 < -540.0 || x0 + width * res > 540.0)) {
+    throw Error(
+        "the output grid would reach beyond 90 degrees of latitude or 540 of longitude in a geographic CRS: "
+        "the inputs' coordinates are not degrees (check --s_srs and --t_srs)");
   }
   DsmResult out;
   out.georef.has_geotransform = true;
@@ -264,12 +296,26 @@ DsmResult build_dsm(const DsmOptions& o) {
         ++out.report.footprints_skipped;
         continue;
       }
-      const int hf = o.height_field.empty() ? -1 : feature->GetFieldIndex(o.height_field.c_str());
-      const bool has_height = hf >= 0 && feature->IsFieldSetAndNotNull(hf);
-      fp_height.push_back(has_height ? feature->GetFieldAsDouble(hf) : std::numeric_limits<double>::quiet_NaN());
-      const int bf = o.base_field.empty() ? -1 : feature->GetFieldIndex(o.base_field.c_str());
-      fp_base.push_back(bf >= 0 && feature->IsFieldSetAndNotNull(bf) ? feature->GetFieldAsDouble(bf)
-                                                                     : std::numeric_limits<double>::quiet_NaN());
+      // A ring on a line (or a sliver that MakeValid collapsed) covers no cell centre.
+      if (!(OGR_G_Area(OGRGeometry::ToHandle(geom.get())) > 0.0)) {
+        ++out.report.footprints_skipped;
+        continue;
+      }
+      // Heights beyond any building's are a wrong field or unit (a sum, millimetres), not data.
+      auto read = [&](const std::string& field, double lo, double hi) {
+        const int index = field.empty() ? -1 : feature->GetFieldIndex(field.c_str());
+        if (index < 0 || !feature->IsFieldSetAndNotNull(index)) return std::numeric_limits<double>::quiet_NaN();
+        const double v = feature->GetFieldAsDouble(index);
+        if (!(v >= lo && v <= hi)) {
+          throw Error("footprint " + std::to_string(feature->GetFID()) + " of '" + o.footprints + "' has " + field +
+                      " = " + number_text(v) + " m, outside " + number_text(lo) + " to " + number_text(hi) +
+                      " m; check the field and its unit");
+        }
+        return v;
+      };
+      fp_height.push_back(o.absolute_heights ? read(o.height_field, -500.0, 9000.0)
+                                             : read(o.height_field, -100.0, 1000.0));
+      fp_base.push_back(read(o.base_field, -500.0, 9000.0));
       geoms.push_back(OGRGeometry::ToHandle(geom.release()));
       burn.push_back(static_cast<double>(geoms.size()));
     }
@@ -445,6 +491,9 @@ DsmResult build_dsm(const DsmOptions& o) {
     ++out.report.footprints_from_cloud;
   }
   if (o.fill) out.report.cells_filled = fill_nodata(out.dsm, o.fill_distance);
+  if (std::all_of(out.dsm.values().begin(), out.dsm.values().end(), [](float v) { return std::isnan(v); })) {
+    throw Error("nothing gave the DSM a height: footprints without heights need --height-field, --points or --dem");
+  }
   if (!o.dems.empty() || cloud_terrain) out.dtm = std::move(terrain);
   return out;
 }

@@ -1,5 +1,6 @@
 #include "horizon_job.h"
 
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -67,6 +68,11 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
     params = choice->params;
   }
   job.engine = make_horizon_engine(method, params);
+  if (job.edge == EdgeMode::nodata && std::isinf(job.engine->radius())) {
+    throw Error(
+        "--edge nodata blanks the cells whose search reaches the raster's edge, which with an unlimited "
+        "radius is every cell; give --radius");
+  }
   job.quiet = o.out.quiet;
   ReadOptions ro;
   ro.band = o.band;

@@ -202,6 +202,15 @@ TEST_F(CliErrors, NumbersThatSteerTheRunMustBeNumbers) {
   EXPECT_FALSE(std::filesystem::exists(dir + "/o.tif"));
 }
 
+// Runs whose every cell would come out blank or open are refused instead of written.
+TEST_F(CliErrors, RunsThatCouldOnlyGiveBlankOrOpenSkiesAreRefused) {
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --edge nodata", dir),
+                        "which with an unlimited radius is every cell");
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --method sampled --radius 1e30", dir),
+                        "every sample of the sampled method beyond the raster");
+  EXPECT_FALSE(std::filesystem::exists(dir + "/o.tif"));
+}
+
 // Heights packed as integers with a scale and an offset (value = raw * scale + offset) are read
 // unpacked; their nodata is a raw value.
 TEST(PackedRasters, ScaleAndOffsetAreApplied) {

@@ -20,7 +20,8 @@ HorizonField horizons(const Terrain& t, const std::string& method, int direction
   p.directions = directions;
   p.lower = lower;
   p.rays = 0;
-  if (method != "sweep") p.radius = 1e5;
+  // The sampled method spreads its samples up to the radius: keep them on these small rasters.
+  if (method != "sweep") p.radius = method == "sampled" ? 50.0 : 1e5;
   HorizonField f;
   ProgressCounter progress;
   make_horizon_engine(method, p)->compute(t, Window::whole(t), f, progress);

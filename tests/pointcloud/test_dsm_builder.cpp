@@ -167,6 +167,82 @@ TEST(DsmBuilder, BadInputGivesClearErrors) {
   }
 }
 
+// The message of what build_dsm throws, or "" if it does not.
+std::string error_of(const DsmOptions& d) {
+  try {
+    build_dsm(d);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A grid of returns at whole metres: the grid snapped to them must hold the ones on its largest x
+// and smallest y too (they lie on the far edges of half-open cells).
+TEST(DsmBuilder, ReturnsOnTheGridsFarEdgesAreKept) {
+  const std::string dir = dir_for("edges");
+  std::vector<LasPoint> pts;
+  for (int y = 0; y < 5; ++y) {
+    for (int x = 0; x < 5; ++x) pts.push_back({500000.0 + x, 6400000.0 + y, 10.0 + x + 10 * y, 0, 1, 1, 2});
+  }
+  LasWriteOptions o;
+  o.crs_wkt = wkt("EPSG:32633");
+  o.offset[0] = 500000, o.offset[1] = 6400000;
+  write_las(dir + "/grid.las", pts, o);
+  DsmOptions d;
+  d.points = {dir + "/grid.las"};
+  d.res = 1.0;
+  const DsmResult r = build_dsm(d);
+  EXPECT_EQ(r.dsm.width(), 5);
+  EXPECT_EQ(r.dsm.height(), 5);
+  EXPECT_EQ(r.report.points_used, 25u);
+  EXPECT_FLOAT_EQ(r.dsm(4, 4), 14.0f);  // x = 500004, y = 6400000: the far corner
+}
+
+// Footprint attributes that cannot be building heights, a footprint of no area, a grid that does
+// not fit a geographic CRS and a DSM with no height anywhere are refused, not burned as zeros.
+TEST(DsmBuilder, ImplausibleFootprintsAndGridsAreRefused) {
+  const std::string dir = dir_for("implausible");
+  const std::string dem = flat_dem(dir);
+  auto footprints = [&](const std::string& name, const std::string& props, const std::string& ring) {
+    write_text(dir + "/" + name, R"({"type":"FeatureCollection",
+      "crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::32633"}},
+      "features":[{"type":"Feature","properties":)" +
+                                     props + R"(,"geometry":{"type":"Polygon","coordinates":[[)" + ring + R"(]]}}]})");
+    return dir + "/" + name;
+  };
+  const std::string square = "[500010,6400010],[500030,6400010],[500030,6400030],[500010,6400030],[500010,6400010]";
+  DsmOptions d;
+  d.dems = {dem};
+  d.height_field = "h";
+  d.footprints = footprints("text.geojson", R"({"h":"tall"})", square);
+  EXPECT_NE(error_of(d).find("holds String, not numbers"), std::string::npos) << error_of(d);
+  d.footprints = footprints("huge.geojson", R"({"h":1e9})", square);
+  EXPECT_NE(error_of(d).find("outside -100 to 1000 m"), std::string::npos) << error_of(d);
+  d.footprints =
+      footprints("line.geojson", R"({"h":10})", "[500010,6400030],[500020,6400030],[500030,6400030],[500010,6400030]");
+  const DsmResult flat = build_dsm(d);
+  EXPECT_EQ(flat.report.footprints_skipped, 1);
+  EXPECT_EQ(flat.report.footprints_burned, 0);
+  EXPECT_FLOAT_EQ(flat.dsm(20, 70), 100.0f);
+
+  DsmOptions no_height;
+  no_height.footprints = footprints("bare.geojson", R"({"name":"x"})", square);
+  EXPECT_NE(error_of(no_height).find("nothing gave the DSM a height"), std::string::npos) << error_of(no_height);
+
+  LasWriteOptions o;
+  o.offset[0] = 500000, o.offset[1] = 6400000;
+  write_las(dir + "/utm.las", {{500000, 6400000, 1, 0, 1, 1, 2}, {500010, 6400010, 1, 0, 1, 1, 2}}, o);
+  DsmOptions degrees;
+  degrees.points = {dir + "/utm.las"};
+  degrees.s_srs = "EPSG:4326";
+  EXPECT_NE(error_of(degrees).find("not degrees"), std::string::npos) << error_of(degrees);
+  DsmOptions reversed;
+  reversed.dems = {dem};
+  reversed.te = std::array<double, 4>{500100, 6400100, 500000, 6400000};
+  EXPECT_NE(error_of(reversed).find("xmin < xmax"), std::string::npos) << error_of(reversed);
+}
+
 TEST(DsmBuilder, RealLidarSampleGridsAllItsPoints) {
   const std::string path = std::string(SKYVIEW_SHARED_DIR) + "/sample_data/las/simple.las";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "../shared/sample_data is absent";
