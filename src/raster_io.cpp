@@ -76,8 +76,15 @@ RawBand read_raw_band(const std::string& path, int band_index) {
   if (!path_exists(path)) throw Error("cannot open '" + path + "': no such file");
   CPLErrorReset();
   RawBand r;
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw Error("'" + path + "' is a folder, not a raster");
   r.ds.reset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
-  if (!r.ds) throw Error("cannot open '" + path + "' as a raster: " + last_gdal_error());
+  if (!r.ds) {
+    // GDAL says nothing when no driver recognises the file.
+    const char* m = CPLGetLastErrorMsg();
+    throw Error("cannot open '" + path + "' as a raster: " +
+                (m && *m ? std::string(m) : std::string("no GDAL driver reads it (corrupt, or not a raster format)")));
+  }
   r.width = r.ds->GetRasterXSize(), r.height = r.ds->GetRasterYSize();
   if (band_index < 1 || band_index > r.ds->GetRasterCount()) {
     throw Error("'" + path + "' has " + std::to_string(r.ds->GetRasterCount()) + " band(s); band " +

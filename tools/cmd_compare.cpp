@@ -104,6 +104,10 @@ Runner setup(CLI::App& app) {
       }
     }
     const ErrorStats e = compare_to_reference(value.values, reference.values, o->threshold);
+    if (e.cells == 0 && steep > 0) {
+      throw Error("every cell valid in both is steeper than --max-slope " + CLI::detail::to_string(o->max_slope) +
+                  " degrees (" + std::to_string(steep) + " left out)");
+    }
     if (e.cells == 0) throw Error("no cell is valid in both '" + o->value + "' and '" + o->reference + "'");
     if (!o->quiet) {
       std::string what =

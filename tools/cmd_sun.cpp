@@ -100,6 +100,9 @@ Site read_site(const Options& o) {
 int print_positions(const Options& o, const Site& site, const Period& p) {
   const std::optional<double> facade = optional_number("--facade-azimuth", o.facade_azimuth);
   const std::optional<double> slope = optional_number("--slope", o.slope);
+  if (slope && !(*slope >= 0.0 && *slope <= 180.0)) throw Error("--slope must be 0 to 180 degrees");
+  if (!slope && !o.surface_azimuth.empty())
+    throw Error("--surface-azimuth is the azimuth of --slope's surface: give --slope");
   const double surface_azimuth = optional_number("--surface-azimuth", o.surface_azimuth).value_or(180.0);
   if (o.csv) {
     std::printf(

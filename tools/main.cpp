@@ -55,6 +55,18 @@ int main(int argc, char** argv) {
     runners.emplace_back(sub, cmd.setup(*sub));
   }
   std::vector<std::string> args = gdal_style_arguments(argc, argv);
+  // CLI11 would say "A subcommand is required" for a misspelt one.
+  std::string known;
+  bool is_known = false;
+  for (const auto& cmd : cli::commands()) {
+    known += (known.empty() ? "" : ", ") + std::string(cmd.name);
+    is_known = is_known || (!args.empty() && args.front() == cmd.name);
+  }
+  if (!args.empty() && !args.front().empty() && args.front()[0] != '-' && !is_known) {
+    std::fprintf(stderr, "skyview: error: unknown subcommand '%s' (%s; see --help)\n", args.front().c_str(),
+                 known.c_str());
+    return 2;
+  }
   std::reverse(args.begin(), args.end());  // CLI11 parses a reversed vector
   try {
     app.parse(args);

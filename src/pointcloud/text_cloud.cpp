@@ -4,6 +4,7 @@
 // The file is read twice (bounds, then points), streamed both times.
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <limits>
 
@@ -70,7 +71,9 @@ class TextCloud final : public PointCloud {
     bool first = true;  // the first line that is not a comment may name the columns
     for (std::uint64_t n = 1; std::getline(in, line); ++n) {
       if (is_comment_or_blank(line)) continue;
-      const bool may_be_header = first;
+      // A header names columns; a line that starts with a number is data, however short.
+      const auto start = line.find_first_not_of(" \t");
+      const bool may_be_header = first && start != std::string::npos && !std::strchr("0123456789+-.", line[start]);
       first = false;
       if (parse_xyz(line, xyz)) {
         point(xyz);

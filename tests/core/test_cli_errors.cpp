@@ -52,7 +52,13 @@ TEST_F(CliErrors, MissingFile) {
 
 TEST_F(CliErrors, NotARaster) {
   std::ofstream(dir + "/text.tif") << "this is not a raster\n";
-  expect_one_line_error(run_skyview("svf " + dir + "/text.tif " + dir + "/o.tif", dir), "as a raster");
+  expect_one_line_error(run_skyview("svf " + dir + "/text.tif " + dir + "/o.tif", dir), "no GDAL driver reads it");
+  std::filesystem::create_directory(dir + "/folder");
+  expect_one_line_error(run_skyview("svf " + dir + "/folder " + dir + "/o.tif", dir), "is a folder, not a raster");
+}
+
+TEST_F(CliErrors, UnknownSubcommand) {
+  expect_one_line_error(run_skyview("sfv " + good + " " + dir + "/o.tif", dir), "unknown subcommand 'sfv'", 2);
 }
 
 TEST_F(CliErrors, SingleCellRaster) {

@@ -88,6 +88,14 @@ TEST(PointClouds, BadCloudsGiveOneLineErrors) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("line 2"), std::string::npos) << e.what();
   }
+  // A first line of two numbers is short data, not a header.
+  write_text(dir + "/short.xyz", "1 2\n3 4 5\n");
+  try {
+    open_point_cloud(dir + "/short.xyz");
+    FAIL() << "a first line of two numbers was taken for a header";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("line 1: expected x y z"), std::string::npos) << e.what();
+  }
   write_text(dir + "/empty.xyz", "x y z\n");
   EXPECT_THROW(build_dsm(grid_10m(dir + "/empty.xyz")), Error);
   write_text(dir + "/cloud.e57", "nothing");
