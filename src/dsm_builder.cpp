@@ -196,6 +196,9 @@ DsmResult build_dsm(const DsmOptions& o) {
       add_box(ext, env.MinX, env.MinY, env.MaxX, env.MaxY, t.get(), "'" + o.footprints + "'");
     }
   }
+  if (res <= 0 && target.IsGeographic()) {
+    throw Error("give --res for a geographic output CRS, in degrees (1 m is about 0.00001 degrees of latitude)");
+  }
   if (res <= 0) res = 1.0;
   if (o.te) {
     ext = {(*o.te)[0], (*o.te)[1], (*o.te)[2], (*o.te)[3]};
@@ -210,17 +213,17 @@ DsmResult build_dsm(const DsmOptions& o) {
     cols += cloud_ext.x1 >= x0 + cols * res ? 1 : 0;
     rows += cloud_ext.y0 <= y1 - rows * res ? 1 : 0;
   }
+  if (target.IsGeographic() &&
+      (y1 > 90.0 + 1e-9 || y1 - rows * res < -90.0 - 1e-9 || x0 < -540.0 || x0 + cols * res > 540.0)) {
+    throw Error(
+        "the output grid would reach beyond 90 degrees of latitude or 540 of longitude in a geographic CRS: "
+        "the inputs' coordinates are not degrees (check --s_srs and --t_srs)");
+  }
   if (!(cols >= 1 && rows >= 1) || cols * rows > 4e9) {
     throw Error("the output grid would be " + number_text(cols) + " x " + number_text(rows) +
                 " cells; check --res and the extent");
   }
   const int width = static_cast<int>(cols), height = static_cast<int>(rows);
-  if (target.IsGeographic() &&
-      (y1 > 90.0 + 1e-9 || y1 - height * res < -90.0 - 1e-9 || x0 < -540.0 || x0 + width * res > 540.0)) {
-    throw Error(
-        "the output grid would reach beyond 90 degrees of latitude or 540 of longitude in a geographic CRS: "
-        "the inputs' coordinates are not degrees (check --s_srs and --t_srs)");
-  }
   DsmResult out;
   out.georef.has_geotransform = true;
   out.georef.geotransform = {x0, res, 0, y1, 0, -res};

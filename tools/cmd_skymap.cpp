@@ -66,6 +66,11 @@ int run(const SkymapOptions& o) {
 
   std::optional<EpwFile> weather;
   if (!o.epw.empty()) weather = read_epw(o.epw);
+  if (weather && weather->missing_solar_values > 0 && !o.out.quiet) {
+    std::fprintf(stderr,
+                 "Warning: %d irradiance values in '%s' are missing codes, negative or not numbers; read as 0\n",
+                 weather->missing_solar_values, o.epw.c_str());
+  }
   Site site;
   if (!o.lat && !weather) throw Error("--lat and --lon are required");
   site.latitude_deg = o.lat ? *o.lat : weather->location.latitude_deg;
@@ -83,6 +88,7 @@ int run(const SkymapOptions& o) {
     if (!o.from.empty()) period = TimePeriod{parse_time(o.from, o.tz).unix_utc, parse_time(o.to, o.tz).unix_utc};
     steps = epw_steps(*weather, site, period);
     meta["EPW"] = o.epw;
+    meta["EPW_MISSING_SOLAR_VALUES"] = std::to_string(weather->missing_solar_values);
     meta["EPW_STEPS"] = "one hour per record at its irradiance instant (--step is not used)";
   } else {
     steps = regular_steps(site, parse_time(o.from, o.tz).unix_utc, parse_time(o.to, o.tz).unix_utc,

@@ -236,6 +236,8 @@ TEST(DsmBuilder, ImplausibleFootprintsAndGridsAreRefused) {
   DsmOptions degrees;
   degrees.points = {dir + "/utm.las"};
   degrees.s_srs = "EPSG:4326";
+  EXPECT_NE(error_of(degrees).find("give --res"), std::string::npos) << error_of(degrees);
+  degrees.res = 1e-4;
   EXPECT_NE(error_of(degrees).find("not degrees"), std::string::npos) << error_of(degrees);
   DsmOptions reversed;
   reversed.dems = {dem};
