@@ -81,21 +81,18 @@ TEST(PointClouds, TextPlyAndPcdGiveTheSameCellsAsLas) {
 
 TEST(PointClouds, BadCloudsGiveOneLineErrors) {
   const std::string dir = test::temp_dir("badclouds");
-  write_text(dir + "/bad.xyz", "1 2 3\n4 five 6\n");
-  try {
-    open_point_cloud(dir + "/bad.xyz");
-    FAIL() << "a text line without numbers was accepted";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("line 2"), std::string::npos) << e.what();
-  }
+  auto open_error = [&](const std::string& name, const std::string& text) {
+    write_text(dir + "/" + name, text);
+    try {
+      open_point_cloud(dir + "/" + name);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
+  EXPECT_NE(open_error("bad.xyz", "1 2 3\n4 five 6\n").find("line 2"), std::string::npos);
   // A first line of two numbers is short data, not a header.
-  write_text(dir + "/short.xyz", "1 2\n3 4 5\n");
-  try {
-    open_point_cloud(dir + "/short.xyz");
-    FAIL() << "a first line of two numbers was taken for a header";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("line 1: expected x y z"), std::string::npos) << e.what();
-  }
+  EXPECT_NE(open_error("short.xyz", "1 2\n3 4 5\n").find("line 1: expected x y z"), std::string::npos);
   write_text(dir + "/empty.xyz", "x y z\n");
   EXPECT_THROW(build_dsm(grid_10m(dir + "/empty.xyz")), Error);
   write_text(dir + "/cloud.e57", "nothing");
