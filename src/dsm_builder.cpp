@@ -7,12 +7,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
 #include <limits>
 #include <memory>
-#include <sstream>
 
 #include "skyview/error.h"
+#include "skyview/number_text.h"
 #include "skyview/point_cloud.h"
 #include "skyview/point_filters.h"
 #include "skyview/point_gridder.h"
@@ -23,13 +22,6 @@ namespace skyview {
 namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-
-// A number for a message (six significant digits).
-std::string number_text(double v) {
-  std::ostringstream out;
-  out << std::setprecision(6) << v;
-  return out.str();
-}
 
 struct CtDeleter {
   void operator()(OGRCoordinateTransformation* t) const { OGRCoordinateTransformation::DestroyCT(t); }

@@ -13,6 +13,7 @@
 #include "skyview/exposure_map.h"
 #include "skyview/exposure_preview.h"
 #include "skyview/exposure_steps.h"
+#include "skyview/number_text.h"
 #include "skyview/raster_io.h"
 #include "skyview/sky_models.h"
 #include "skyview/time_parse.h"
@@ -28,12 +29,6 @@ struct SkymapOptions {
   bool no_preview = false;
   OutputOptions out;
 };
-
-std::string number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.10g", v);
-  return text;
-}
 
 std::unique_ptr<SkyModel> make_sky(const SkymapOptions& o) {
   if (o.sky == "preetham") return make_preetham_sky(o.turbidity, o.efficacy);
@@ -104,25 +99,26 @@ int run(const SkymapOptions& o) {
   const double direct_h = map.irradiation(ExposureBand::direct, up);
   const double diffuse_h = map.irradiation(ExposureBand::diffuse, up);
   meta["SKY"] = o.sky;
-  meta["LATITUDE"] = number(site.latitude_deg);
-  meta["LONGITUDE"] = number(site.longitude_deg);
-  meta["ELEVATION"] = number(site.elevation_m);
+  meta["LATITUDE"] = number_text(site.latitude_deg);
+  meta["LONGITUDE"] = number_text(site.longitude_deg);
+  meta["ELEVATION"] = number_text(site.elevation_m);
   if (!o.from.empty()) {
     meta["FROM"] = o.from;
     meta["TO"] = o.to;
   }
   if (o.sky == "preetham" || o.sky == "hosek" || (o.sky == "isotropic" && !weather)) {
-    meta["TURBIDITY"] = number(o.turbidity);
+    meta["TURBIDITY"] = number_text(o.turbidity);
   }
-  if (o.sky == "hosek") meta["ALBEDO"] = number(o.albedo);
-  if (o.sky == "preetham" || (o.sky == "isotropic" && !weather)) meta["LUMINOUS_EFFICACY_LM_W"] = number(o.efficacy);
+  if (o.sky == "hosek") meta["ALBEDO"] = number_text(o.albedo);
+  if (o.sky == "preetham" || (o.sky == "isotropic" && !weather))
+    meta["LUMINOUS_EFFICACY_LM_W"] = number_text(o.efficacy);
   meta["TIME_STEPS"] = std::to_string(steps.size());
   meta["PARAMETRISATION"] =
       "Blinn-Newell longitude/latitude: column x = azimuth [x,x+1)*360/width deg clockwise from north (N at the "
       "left edge, S in the middle); row y = zenith angle [y,y+1)*90/height deg (zenith at the top row)";
-  meta["GLOBAL_HORIZONTAL_WH_M2"] = number(direct_h + diffuse_h);
-  meta["DIRECT_HORIZONTAL_WH_M2"] = number(direct_h);
-  meta["DIFFUSE_HORIZONTAL_WH_M2"] = number(diffuse_h);
+  meta["GLOBAL_HORIZONTAL_WH_M2"] = number_text(direct_h + diffuse_h);
+  meta["DIRECT_HORIZONTAL_WH_M2"] = number_text(direct_h);
+  meta["DIFFUSE_HORIZONTAL_WH_M2"] = number_text(diffuse_h);
   meta["COMMAND"] = command_line();
 
   WriteOptions wo;

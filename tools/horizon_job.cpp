@@ -8,6 +8,7 @@
 
 #include "skyview/accuracy_choice.h"
 #include "skyview/error.h"
+#include "skyview/number_text.h"
 #include "skyview/version.h"
 
 namespace skyview::cli {
@@ -89,18 +90,18 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   m["SKYVIEW_PRODUCT"] = command;
   m["SOURCE"] = o.input;
   m["SOURCE_BAND"] = std::to_string(o.band);
-  m["Z_SCALE"] = std::to_string(o.z_scale);
+  m["Z_SCALE"] = number_text(o.z_scale);
   m["GROUND_FRAME"] = job.terrain.frame.description();
   m["CITATION"] = std::string(job.engine->citation());
   for (const auto& [k, v] : job.engine->describe()) m[k] = v;
   m["EDGE_MODE"] = o.edge;
   if (choice) {
-    m["MAX_ERROR_REQUESTED"] = std::to_string(o.max_error);
+    m["MAX_ERROR_REQUESTED"] = number_text(o.max_error);
     m["MAX_ERROR_CHOICE"] =
         choice->method + " with " + std::to_string(choice->entry.directions) + " directions" +
         (choice->method == "sampled" ? " and " + std::to_string(choice->entry.samples) + " samples" : "") +
         (choice->method == "sweep" ? " and " + std::to_string(choice->entry.samples) + " exact near steps" : "");
-    m["MAX_ERROR_CALIBRATED_P99"] = std::to_string(choice->entry.worst_p99);
+    m["MAX_ERROR_CALIBRATED_P99"] = number_text(choice->entry.worst_p99);
     m["MAX_ERROR_BASIS"] =
         "worst 99th-percentile |svf error| against a 64-direction ray cast over the calibration "
         "rasters of docs/benchmarks.md";

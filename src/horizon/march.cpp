@@ -7,6 +7,7 @@
 
 #include "methods.h"
 #include "ray_scan.h"
+#include "skyview/number_text.h"
 
 namespace skyview::detail {
 namespace {
@@ -50,8 +51,7 @@ class MarchEngine final : public HorizonEngine {
     return "exhaustive line march over every cell crossing (cf. GRASS r.horizon, SAGA Sky View Factor)";
   }
   std::map<std::string, std::string> describe() const override {
-    return {
-        {"METHOD", "march"}, {"DIRECTIONS", std::to_string(p_.directions)}, {"RADIUS_M", std::to_string(p_.radius)}};
+    return {{"METHOD", "march"}, {"DIRECTIONS", std::to_string(p_.directions)}, {"RADIUS_M", number_text(p_.radius)}};
   }
   double radius() const override { return p_.radius; }
   const HorizonParams& params() const override { return p_; }

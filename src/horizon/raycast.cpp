@@ -24,6 +24,7 @@
 #include "methods.h"
 #include "ray_scan.h"
 #include "skyview/error.h"
+#include "skyview/number_text.h"
 
 namespace skyview::detail {
 namespace {
@@ -334,7 +335,7 @@ class RaycastEngine final : public HorizonEngine {
   std::map<std::string, std::string> describe() const override {
     return {{"METHOD", "raycast"},
             {"DIRECTIONS", std::to_string(p_.directions)},
-            {"RADIUS_M", p_.radius == 0.0 ? "unlimited" : std::to_string(p_.radius)},
+            {"RADIUS_M", p_.radius == 0.0 ? "unlimited" : number_text(p_.radius)},
             {"MC_RAYS_PER_CELL", std::to_string(p_.rays)},
             {"HORIZON_PRECISION_RAD", "1e-5"}};
   }

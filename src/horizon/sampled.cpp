@@ -10,6 +10,7 @@
 #include "methods.h"
 #include "ray_scan.h"
 #include "skyview/error.h"
+#include "skyview/number_text.h"
 
 namespace skyview::detail {
 namespace {
@@ -49,7 +50,7 @@ class SampledEngine final : public HorizonEngine {
     return {{"METHOD", "sampled"},
             {"DIRECTIONS", std::to_string(p_.directions)},
             {"SAMPLES", std::to_string(p_.samples)},
-            {"RADIUS_M", std::to_string(p_.radius)},
+            {"RADIUS_M", number_text(p_.radius)},
             {"SEED", std::to_string(p_.seed)},
             {"SAMPLE_SPACING", "quadratic: d_j = R*((j+1)/S)^2"}};
   }

@@ -40,6 +40,7 @@
 #include "fast_atan.h"
 #include "methods.h"
 #include "skyview/error.h"
+#include "skyview/number_text.h"
 
 namespace skyview::detail {
 namespace {
@@ -696,10 +697,10 @@ class SweepEngine final : public HorizonEngine {
   std::map<std::string, std::string> describe() const override {
     return {{"METHOD", "sweep"},
             {"DIRECTIONS", std::to_string(p_.directions)},
-            {"RADIUS_M", p_.radius > 0 ? std::to_string(p_.radius) : "unlimited"},
+            {"RADIUS_M", p_.radius > 0 ? number_text(p_.radius) : "unlimited"},
             {"NEAR_STEPS", p_.radius > 0 ? "all within the radius" : std::to_string(p_.samples)},
             {"CURVATURE", p_.curvature},
-            {"REFRACTION", std::to_string(p_.refraction)}};
+            {"REFRACTION", number_text(p_.refraction)}};
   }
   double radius() const override { return p_.radius > 0 ? p_.radius : std::numeric_limits<double>::infinity(); }
   const HorizonParams& params() const override { return p_; }
