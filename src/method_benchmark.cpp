@@ -26,8 +26,14 @@ std::string BenchConfig::label() const {
 }
 
 std::vector<BenchConfig> default_bench_grid(const std::vector<std::string>& methods) {
+  if (methods.empty()) throw Error("no method given (sampled, march, sweep)");
   std::vector<BenchConfig> grid;
-  for (const auto& m : methods) {
+  for (std::size_t i = 0; i < methods.size(); ++i) {
+    const std::string& m = methods[i];
+    if (std::find(methods.begin(), methods.begin() + static_cast<std::ptrdiff_t>(i), m) !=
+        methods.begin() + static_cast<std::ptrdiff_t>(i)) {
+      throw Error("method '" + m + "' given twice");
+    }
     if (m == "sampled") {
       for (int d : {8, 16, 32}) {
         for (int s : {8, 16, 32, 64}) {
@@ -53,7 +59,7 @@ std::vector<BenchConfig> default_bench_grid(const std::vector<std::string>& meth
         grid.push_back(c);
       }
     } else {
-      throw Error("bench: unknown method '" + m + "' (sampled, march, sweep)");
+      throw Error("unknown method '" + m + "' (sampled, march, sweep)");
     }
   }
   for (auto& c : grid) c.params.curvature = "off";  // the reference has no curvature

@@ -238,9 +238,24 @@ bool same_file(const std::string& a, const std::string& b) {
 }  // namespace
 
 void check_outputs_apart(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs) {
+  // The files an input reads: a VRT (or a format with side files) reads more than its own path.
+  init_gdal();
+  std::vector<std::string> read;
+  for (const std::string& in : inputs) {
+    if (in.empty()) continue;
+    read.push_back(in);
+    CPLErrorReset();
+    const CPLErrorHandlerPusher quiet(CPLQuietErrorHandler);
+    GDALDatasetUniquePtr ds(GDALDataset::Open(in.c_str(), GDAL_OF_RASTER | GDAL_OF_VECTOR | GDAL_OF_READONLY));
+    if (!ds) continue;
+    char** files = ds->GetFileList();
+    for (char** f = files; f && *f; ++f) read.emplace_back(*f);
+    CSLDestroy(files);
+  }
+  CPLErrorReset();  // a failed open here is no error of the run's
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     if (outputs[i].empty()) continue;
-    for (const std::string& in : inputs) {
+    for (const std::string& in : read) {
       if (!in.empty() && same_file(outputs[i], in)) {
         throw Error("output '" + outputs[i] + "' is also an input ('" + in + "'); give another output path");
       }

@@ -49,7 +49,11 @@ Runner setup(CLI::App& app) {
   return [o] {
     ThreadLimit limit(o->threads);
     const std::vector<std::string> names{"bench.json", "bench.md", "bench.png"};
-    std::filesystem::create_directories(o->out);
+    const auto grid = default_bench_grid(split_list(o->methods));  // bad --methods before any folder is made
+    std::error_code ec;
+    std::filesystem::create_directories(o->out, ec);
+    if (ec || !std::filesystem::is_directory(o->out))
+      throw Error("--out '" + o->out + "' is not a folder that can be made");
     for (const auto& n : names) {
       check_outputs_apart({o->out + "/" + n}, {o->input});
       check_output_writable(o->out + "/" + n, o->overwrite);
@@ -58,7 +62,6 @@ Runner setup(CLI::App& app) {
     ro.band = o->band;
     ro.z_scale = o->z_scale;
     const Terrain terrain = read_terrain(o->input, ro);
-    const auto grid = default_bench_grid(split_list(o->methods));
     if (!o->quiet) std::fprintf(stderr, "reference: raycast with %d directions...\n", o->reference_directions);
     const BenchReference ref = compute_reference(terrain, o->reference_directions);
     if (!o->quiet) std::fprintf(stderr, "reference done in %.1f s\n", ref.seconds);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include <ogr_spatialref.h>
 #include <nlohmann/json.hpp>
 
 #include "command.h"
@@ -30,6 +31,14 @@ void check_same_grid(const GridOf& a, const GridOf& b) {
                 "' is " + std::to_string(wb) + " x " + std::to_string(hb) +
                 "; resample one onto the other's grid first");
   }
+  if (!a.georef.crs_wkt.empty() && !b.georef.crs_wkt.empty()) {
+    OGRSpatialReference sa, sb;
+    sa.importFromWkt(a.georef.crs_wkt.c_str());
+    sb.importFromWkt(b.georef.crs_wkt.c_str());
+    if (!sa.IsSame(&sb)) {
+      throw Error("'" + a.path + "' and '" + b.path + "' are in different CRSs; warp one onto the other's grid first");
+    }
+  }
   if (!a.georef.has_geotransform || !b.georef.has_geotransform) return;
   const auto& ga = a.georef.geotransform;
   const auto& gb = b.georef.geotransform;
@@ -51,11 +60,9 @@ Runner setup(CLI::App& app) {
   auto o = std::make_shared<Options>();
   app.add_option("value", o->value, "Raster to judge")->required();
   app.add_option("reference", o->reference, "Reference raster on the same grid")->required();
-  app.add_option("-b,--band", o->band, "Band of the raster to judge")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+  app.add_option("-b,--band", o->band, "Band of the raster to judge")->capture_default_str()->check(positive_number());
   app.add_option("--ref-band", o->ref_band, "Band of the reference (default: the same as -b)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   app.add_option("--scale", o->scale, "Multiply the judged values first (0.01 for percent)")
       ->capture_default_str()
       ->check(finite_number());

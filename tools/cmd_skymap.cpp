@@ -63,7 +63,8 @@ int run(const SkymapOptions& o) {
   if (!o.epw.empty()) weather = read_epw(o.epw);
   if (weather && weather->missing_solar_values > 0 && !o.out.quiet) {
     std::fprintf(stderr,
-                 "Warning: %d irradiance values in '%s' are missing codes, negative or not numbers; read as 0\n",
+                 "Warning: %d irradiance values in '%s' are missing codes, not numbers, negative or above 1600 W/m2; "
+                 "read as 0\n",
                  weather->missing_solar_values, o.epw.c_str());
   }
   Site site;

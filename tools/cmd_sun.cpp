@@ -246,6 +246,7 @@ Runner setup(CLI::App& app) {
                  "Events day: 'local' (events of the local calendar day) or 'spa' (SPA's UT-day wrapping, as in "
                  "the report's test output)")
       ->capture_default_str()
+      ->check(CLI::IsMember({"local", "spa"}))
       ->type_name("local|spa");
   app.add_option("--facade-azimuth", o->facade_azimuth,
                  "Add horizontal/vertical shadow angles (HSA, VSA) for a façade facing this azimuth (deg from north)")

@@ -50,6 +50,7 @@ Runner setup(CLI::App& app) {
     g.geotransform[3] += o->y0;
     OGRSpatialReference srs;
     if (srs.SetFromUserInput(o->crs.c_str()) != OGRERR_NONE) throw Error("unknown CRS '" + o->crs + "'");
+    if (!srs.IsProjected()) throw Error("--crs must be a projected CRS in metres ('" + o->crs + "' is not)");
     char* wkt = nullptr;
     srs.exportToWkt(&wkt);
     g.crs_wkt = wkt;

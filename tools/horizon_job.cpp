@@ -70,9 +70,10 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   }
   job.engine = make_horizon_engine(method, params);
   if (job.edge == EdgeMode::nodata && std::isinf(job.engine->radius())) {
-    throw Error(
-        "--edge nodata blanks the cells whose search reaches the raster's edge, which with an unlimited "
-        "radius is every cell; give --radius");
+    throw Error(std::string("--edge nodata blanks the cells whose search reaches the raster's edge, which with an ") +
+                (choice ? "unlimited radius (what --max-error chose: it sets --method, --directions, --samples and "
+                          "--radius) is every cell; choose the method and --radius yourself"
+                        : "unlimited radius is every cell; give --radius"));
   }
   job.quiet = o.out.quiet;
   ReadOptions ro;

@@ -19,8 +19,9 @@ struct EpwLocation {
 struct EpwRecord {
   int year = 0, month = 0, day = 0, hour = 0;  // as stored; hour 1..24
   double time_utc = 0.0;                       // instant the irradiance refers to (Unix seconds)
-  // Hourly energies (Wh/m²), i.e. mean irradiances over the hour (W/m²); missing codes and
-  // negative values are read as 0 and counted in EpwFile::missing_solar_values.
+  // Hourly energies (Wh/m²), i.e. mean irradiances over the hour (W/m²); missing codes, values
+  // that are not numbers, negative or above 1600 W/m² are read as 0 and counted in
+  // EpwFile::missing_solar_values.
   double global_horizontal = 0.0;
   double direct_normal = 0.0;
   double diffuse_horizontal = 0.0;

@@ -45,7 +45,9 @@ bool parse_number(const std::string& text, double& value) {
 // Solar fields use 9999 (and 999999 for some generators) as "missing".
 double solar_value(const std::string& text, int& missing) {
   double v = 0.0;
-  if (!parse_number(text, v) || v >= 9999.0) {
+  // 9999 is EPW's missing code; above 1600 W/m² no irradiance at the ground has been measured (the
+  // solar constant is 1361 W/m², cloud edges raise global irradiance by at most a few tenths).
+  if (!parse_number(text, v) || v > 1600.0) {
     ++missing;
     return 0.0;
   }
@@ -75,6 +77,7 @@ EpwFile read_epw(const std::string& path) {
   while (std::getline(in, line)) {
     ++number;
     if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a UTF-8 byte-order mark
     if (trim(line).empty()) continue;
     const auto fields = split_fields(line);
     const std::string key = trim(fields[0]);

@@ -61,6 +61,14 @@ TEST_F(CliErrors, UnknownSubcommand) {
   expect_one_line_error(run_skyview("sfv " + good + " " + dir + "/o.tif", dir), "unknown subcommand 'sfv'", 2);
 }
 
+TEST_F(CliErrors, SynthAndBenchRefuseWhatTheyCannotMake) {
+  expect_one_line_error(run_skyview("synth city " + dir + "/c.tif --crs EPSG:4326", dir), "must be a projected CRS");
+  expect_one_line_error(run_skyview("bench " + good + " --methods '' --out " + dir + "/b", dir), "no method given");
+  expect_one_line_error(run_skyview("bench " + good + " --methods sweep,sweep --out " + dir + "/b", dir),
+                        "given twice");
+  EXPECT_FALSE(std::filesystem::exists(dir + "/b"));
+}
+
 TEST_F(CliErrors, SingleCellRaster) {
   write_terrain(dir + "/one.tif", rasterize(circular_pit(5, 5), 1, 1, local_grid(1, 1, 1.0)), {});
   expect_one_line_error(run_skyview("svf " + dir + "/one.tif " + dir + "/o.tif", dir), "single cell");
@@ -187,6 +195,16 @@ TEST_F(CliErrors, OutputsNeverReplaceInputsOrOtherOutputs) {
                         "name the same output file");
   EXPECT_FALSE(std::filesystem::exists(dir + "/o.tif"));
   EXPECT_EQ(std::filesystem::file_size(good), size);
+  EXPECT_EQ(std::filesystem::last_write_time(good), before);
+  // A VRT reads its source: the source is an input too.
+  {
+    GDALDatasetUniquePtr src(GDALDataset::Open(good.c_str(), GDAL_OF_RASTER));
+    GDALDriver* vrt = GetGDALDriverManager()->GetDriverByName("VRT");
+    GDALDatasetUniquePtr copy(
+        vrt->CreateCopy((dir + "/view.vrt").c_str(), src.get(), FALSE, nullptr, nullptr, nullptr));
+    ASSERT_TRUE(copy);
+  }
+  expect_one_line_error(run_skyview("svf " + dir + "/view.vrt " + good + " --overwrite", dir), "is also an input");
   EXPECT_EQ(std::filesystem::last_write_time(good), before);
   std::filesystem::create_directory(dir + "/folder.tif");
   expect_one_line_error(run_skyview("svf " + good + " " + dir + "/folder.tif --overwrite", dir),

@@ -137,6 +137,14 @@ TEST_F(CompareCli, RefusesRastersOnDifferentGrids) {
   r = run(dir + "/shifted.tif " + dir + "/reference.tif");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("not the same geotransform"), std::string::npos) << r.err;
+  GeoReference utm = georef, elsewhere = georef;
+  utm.crs_wkt = wkt_of("EPSG:32633");
+  elsewhere.crs_wkt = wkt_of("EPSG:32634");
+  write(dir + "/utm.tif", k.reference, &utm);
+  write(dir + "/elsewhere.tif", k.value, &elsewhere);
+  r = run(dir + "/elsewhere.tif " + dir + "/utm.tif");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("different CRSs"), std::string::npos) << r.err;
   r = run(dir + "/value.tif " + dir + "/reference.tif --max-slope 5");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("--max-slope needs --dem"), std::string::npos) << r.err;

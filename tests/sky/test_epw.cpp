@@ -49,6 +49,33 @@ TEST(Epw, ReadsPvgisQuirksAndUtcOffset) {
   EXPECT_TRUE(other_year);
 }
 
+// A byte-order mark (editors on Windows write one) is not a reason to refuse the file; an
+// irradiance above any measured at the ground is a missing value, not a sunny hour.
+TEST(Epw, ByteOrderMarkAndImpossibleIrradiance) {
+  SKYVIEW_REQUIRE_SHARED(path, "weather/chicago.epw");
+  const EpwFile original = read_epw(path);
+  std::ifstream in(path, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // Line 21 holds record 13 (hour 13 of 1 January): its GHI field (the 14th) becomes 5000.
+  std::size_t line_start = 0;
+  for (int line = 0; line < 20; ++line) line_start = text.find('\n', line_start) + 1;
+  std::size_t field = line_start;
+  for (int comma = 0; comma < 13; ++comma) field = text.find(',', field) + 1;
+  const std::size_t end = text.find(',', field);
+  const double before = std::stod(text.substr(field, end - field));
+  text.replace(field, end - field, "5000");
+  const auto dir = std::filesystem::temp_directory_path() / "skyview_epw_bom";
+  std::filesystem::create_directories(dir);
+  const std::string edited = (dir / "bom.epw").string();
+  std::ofstream(edited, std::ios::binary) << "\xEF\xBB\xBF" << text;
+  const EpwFile f = read_epw(edited);
+  EXPECT_EQ(f.records.size(), original.records.size());
+  EXPECT_NEAR(f.location.latitude_deg, original.location.latitude_deg, 1e-12);
+  EXPECT_EQ(f.missing_solar_values, original.missing_solar_values + (before > 1600.0 ? 0 : 1));
+  EXPECT_EQ(f.records[12].global_horizontal, 0.0);
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Epw, BadInputIsOneLineError) {
   const auto dir = std::filesystem::temp_directory_path() / "skyview_epw_test";
   std::filesystem::create_directories(dir);
