@@ -13,7 +13,10 @@
 namespace skyview {
 
 void Jacobian::pixel_step_for_azimuth(double azimuth, double& dcol, double& drow) const {
-  const double east = std::sin(azimuth), north = std::cos(azimuth);
+  pixel_step(std::sin(azimuth), std::cos(azimuth), dcol, drow);
+}
+
+void Jacobian::pixel_step(double east, double north, double& dcol, double& drow) const {
   const double det = a * d - b * c;
   dcol = (d * east - b * north) / det;
   drow = (a * north - c * east) / det;

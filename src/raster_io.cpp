@@ -38,9 +38,10 @@ bool path_exists(const std::string& path) {
   return VSIStatL(path.c_str(), &st) == 0;
 }
 
-std::string last_gdal_error() {
+// GDAL's last message, or `otherwise` where it said nothing.
+std::string last_gdal_error(const char* otherwise = "unknown GDAL error") {
   const char* m = CPLGetLastErrorMsg();
-  return m && *m ? std::string(m) : std::string("unknown GDAL error");
+  return m && *m ? std::string(m) : std::string(otherwise);
 }
 
 }  // namespace
@@ -79,11 +80,9 @@ RawBand read_raw_band(const std::string& path, int band_index) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw Error("'" + path + "' is a folder, not a raster");
   r.ds.reset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
-  if (!r.ds) {
-    // GDAL says nothing when no driver recognises the file.
-    const char* m = CPLGetLastErrorMsg();
-    throw Error("cannot open '" + path + "' as a raster: " +
-                (m && *m ? std::string(m) : std::string("no GDAL driver reads it (corrupt, or not a raster format)")));
+  if (!r.ds) {  // GDAL says nothing when no driver recognises the file
+    throw Error("cannot open '" + path +
+                "' as a raster: " + last_gdal_error("no GDAL driver reads it (corrupt, or not a raster format)"));
   }
   r.width = r.ds->GetRasterXSize(), r.height = r.ds->GetRasterYSize();
   if (band_index < 1 || band_index > r.ds->GetRasterCount()) {
@@ -213,11 +212,11 @@ Terrain read_terrain(const std::string& path, const ReadOptions& options, ReadRe
 
 void check_output_writable(const std::string& path, bool overwrite) {
   if (path.empty()) throw Error("no output file given");
-  if (path_exists(path) && !overwrite) throw Error("output '" + path + "' exists; use --overwrite to replace it");
   std::error_code ec;
   if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
     throw Error("output '" + path + "' exists and is not a regular file; give another path");
   }
+  if (path_exists(path) && !overwrite) throw Error("output '" + path + "' exists; use --overwrite to replace it");
   const auto dir = std::filesystem::path(path).parent_path();
   if (!dir.empty() && !std::filesystem::is_directory(dir)) {
     throw Error("cannot write '" + path + "': folder '" + dir.string() + "' does not exist");

@@ -6,6 +6,11 @@
 
 namespace skyview {
 
+double ground_diagonal(const Terrain& t) {
+  const Jacobian j = t.frame.at(t.origin_col, t.origin_row);
+  return std::hypot(t.width() * std::hypot(j.a, j.c), t.height() * std::hypot(j.b, j.d));
+}
+
 int halo_cells(const Terrain& t, double radius) {
   if (!std::isfinite(radius)) return std::max(t.full_width, t.full_height);
   // The smallest ground size of a pixel step anywhere bounds how many cells `radius` spans.

@@ -72,15 +72,13 @@ Runner setup(CLI::App& app) {
       "adds svf_montecarlo and svf_montecarlo_stderr.");
   return [o, preview, products] {
     const std::vector<const ProductBand*> chosen = chosen_products(*products);
-    check_outputs_apart({o->output, *preview}, {o->input});
-    if (!preview->empty()) check_output_writable(*preview, o->out.overwrite);
     ThreadLimit limit(o->out.threads);
     HorizonJobOptions opts = *o;
     // Negative openness is the only product that needs the lowest angles: a second walk.
     opts.params.lower = std::any_of(chosen.begin(), chosen.end(), [](const ProductBand* p) {
       return p->grid == &SkyViewProducts::openness_negative;
     });
-    HorizonJob job = prepare_horizon_job(opts, "svf");
+    HorizonJob job = prepare_horizon_job(opts, "svf", {*preview});
     // Horizons are held a part at a time (compute_sky_view), so memory does not grow with the
     // number of directions.
     SkyViewProducts p;

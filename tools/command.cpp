@@ -1,6 +1,7 @@
 #include "command.h"
 
 #include <cmath>
+#include <functional>
 
 #include <tbb/global_control.h>
 
@@ -52,44 +53,42 @@ ThreadLimit::ThreadLimit(int threads) {
 
 ThreadLimit::~ThreadLimit() = default;
 
-const CLI::Validator& positive_number() {
-  static const CLI::Validator v(
-      [](std::string& text) -> std::string {
+namespace {
+
+// A number option checked by `ok`, with `message` for anything else (text, NaN, or out of range).
+CLI::Validator number_check(std::function<bool(double)> ok, const std::string& message, const std::string& name) {
+  return CLI::Validator(
+      [ok = std::move(ok), message](std::string& text) -> std::string {
         double x = 0;
-        return CLI::detail::lexical_cast(text, x) && x > 0 && std::isfinite(x) ? "" : "must be a positive number";
+        return CLI::detail::lexical_cast(text, x) && ok(x) ? "" : message;
       },
-      "POSITIVE");
+      name);
+}
+
+}  // namespace
+
+const CLI::Validator& positive_number() {
+  static const CLI::Validator v =
+      number_check([](double x) { return x > 0 && std::isfinite(x); }, "must be a positive number", "POSITIVE");
   return v;
 }
 
 const CLI::Validator& non_negative_number() {
-  static const CLI::Validator v(
-      [](std::string& text) -> std::string {
-        double x = 0;
-        return CLI::detail::lexical_cast(text, x) && x >= 0 && std::isfinite(x) ? "" : "must be zero or positive";
-      },
-      "NONNEGATIVE");
+  static const CLI::Validator v =
+      number_check([](double x) { return x >= 0 && std::isfinite(x); }, "must be zero or positive", "NONNEGATIVE");
   return v;
 }
 
 const CLI::Validator& finite_number() {
-  static const CLI::Validator v(
-      [](std::string& text) -> std::string {
-        double x = 0;
-        return CLI::detail::lexical_cast(text, x) && std::isfinite(x) ? "" : "must be a finite number";
-      },
-      "NUMBER");
+  static const CLI::Validator v =
+      number_check([](double x) { return std::isfinite(x); }, "must be a finite number", "NUMBER");
   return v;
 }
 
 CLI::Validator number_in(double lo, double hi) {
   const std::string range = CLI::detail::to_string(lo) + " to " + CLI::detail::to_string(hi);
-  return CLI::Validator(
-      [lo, hi, range](std::string& text) -> std::string {
-        double x = 0;
-        return CLI::detail::lexical_cast(text, x) && x >= lo && x <= hi ? "" : "must be a number from " + range;
-      },
-      "[" + range + "]");
+  return number_check([lo, hi](double x) { return x >= lo && x <= hi; }, "must be a number from " + range,
+                      "[" + range + "]");
 }
 
 }  // namespace skyview::cli

@@ -54,9 +54,15 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
   add_output_options(app, o.out);
 }
 
-HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& command) {
-  check_outputs_apart({o.output}, {o.input});
+HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& command,
+                               const std::vector<std::string>& more_outputs) {
+  std::vector<std::string> outputs{o.output};
+  outputs.insert(outputs.end(), more_outputs.begin(), more_outputs.end());
+  check_outputs_apart(outputs, {o.input});
   check_output_writable(o.output, o.out.overwrite);
+  for (const std::string& path : more_outputs) {
+    if (!path.empty()) check_output_writable(path, o.out.overwrite);
+  }
   if (o.out.format == "MEM") throw Error("output format MEM writes no file; choose a file format");
   HorizonJob job;
   job.edge = o.edge == "nodata" ? EdgeMode::nodata : EdgeMode::open;

@@ -5,6 +5,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "command.h"
 #include "skyview/horizon_engine.h"
@@ -35,7 +36,9 @@ struct HorizonJob {
 };
 
 // Reads the input, builds the engine and records the run's parameters; computes nothing yet.
-HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& command);
+// `more_outputs` (a preview) are refused with the output where they would replace an input.
+HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& command,
+                               const std::vector<std::string>& more_outputs = {});
 
 // Runs `work` with progress over the job's cells on stderr (unless the job is quiet).
 void with_progress(const HorizonJob& job, const std::function<void(ProgressCounter&)>& work);

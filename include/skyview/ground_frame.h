@@ -17,6 +17,8 @@ struct Jacobian {
   // The pixel step (dcol, drow) that moves one metre along the true azimuth (radians,
   // clockwise from north).
   void pixel_step_for_azimuth(double azimuth, double& dcol, double& drow) const;
+  // The same for the azimuth whose sine and cosine are `east` and `north`.
+  void pixel_step(double east, double north, double& dcol, double& drow) const;
   // Ground distance in metres of a pixel offset.
   double metres(double dcol, double drow) const;
   // Smallest ground size of a pixel step along either axis, metres.

@@ -38,6 +38,10 @@ struct Window {
   std::int64_t cells() const { return static_cast<std::int64_t>(cols) * rows; }
 };
 
+// The buffer's diagonal on the ground in metres (by the Jacobian at its first cell): how far any
+// ray within it can run.
+double ground_diagonal(const Terrain& terrain);
+
 // Cells of halo a window needs so that every sample within `radius` metres lies in the buffer.
 int halo_cells(const Terrain& terrain, double radius);
 

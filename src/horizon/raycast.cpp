@@ -87,10 +87,9 @@ class TerrainMesh {
     scene_.reset(rtcNewScene(device));
     rtcSetSceneFlags(scene_.get(), RTC_SCENE_FLAG_ROBUST);
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    const bool skirt = w > 1 && h > 1;
     const std::size_t grid = static_cast<std::size_t>(w) * h;
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                          3 * sizeof(float), grid + (skirt ? 2 * (w + h) : 0)));
+                                                          3 * sizeof(float), grid + 2 * (w + h)));
     auto put = [&](std::size_t i, double c, double r, float z) {
       v[3 * i + 0] = static_cast<float>(j_.a * c + j_.b * r);
       v[3 * i + 1] = static_cast<float>(j_.c * c + j_.d * r);
@@ -131,7 +130,7 @@ class TerrainMesh {
     // corner was missed, 1.4 rad off). Hanging below the boundary, the skirt hides nothing from a ray
     // that leaves the raster above it (only rays within 0.06° of the nadir could meet it); a deeper
     // one (10 km) was too thin for float intersections and blocked rays just above the boundary.
-    if (skirt) {
+    {
       constexpr double kSkirt = 0.01;
       const double drop = 1000 * kSkirt * j_.min_cell_size();
       struct Side {
@@ -198,22 +197,13 @@ class TerrainMesh {
     return ray;
   }
 
-  // Pixel steps per metre of the ground track along the azimuth.
-  void track(double sin_az, double cos_az, double& pc, double& pr) const {
-    const double det = j_.a * j_.d - j_.b * j_.c;
-    pc = (j_.d * sin_az - j_.b * cos_az) / det, pr = (j_.a * cos_az - j_.c * sin_az) / det;
-    // cos(90°) is 6e-17, not 0: keep tracks along a row or column on it.
-    if (std::abs(pc) < 1e-12 * std::abs(pr)) pc = 0.0;
-    if (std::abs(pr) < 1e-12 * std::abs(pc)) pr = 0.0;
-  }
-
   // Slope, in this mesh's sign, from cell (col, row) to where the ground track along the azimuth
   // first crosses a row or column line (read linearly along it, as the march reads it): the far
   // edge of the triangles around the cell's vertex. -inf where that crossing leaves the buffer, NaN
   // where it touches nodata (which never occludes): neither bounds anything.
   double first_crossing_slope(int col, int row, double sin_az, double cos_az) const {
     double pc, pr;
-    track(sin_az, cos_az, pc, pr);
+    j_.pixel_step(sin_az, cos_az, pc, pr);
     const double to_col = pc != 0.0 ? 1.0 / std::abs(pc) : kInf, to_row = pr != 0.0 ? 1.0 / std::abs(pr) : kInf;
     const double d = std::min(to_col, to_row);  // metres
     double x = to_col <= to_row ? col + (pc > 0 ? 1 : -1) : col + pc * d;
@@ -230,7 +220,7 @@ class TerrainMesh {
   // edges) and never came out: it is blocked. NaN where the track ends at once or on nodata.
   double end_slope(int col, int row, double sin_az, double cos_az, double range) const {
     double pc, pr;
-    track(sin_az, cos_az, pc, pr);
+    j_.pixel_step(sin_az, cos_az, pc, pr);
     const double last_c = t_.width() - 1, last_r = t_.height() - 1;
     const double to_c = pc > 0 ? (last_c - col) / pc : pc < 0 ? -col / pc : kInf;
     const double to_r = pr > 0 ? (last_r - row) / pr : pr < 0 ? -row / pr : kInf;

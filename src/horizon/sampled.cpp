@@ -60,9 +60,7 @@ class SampledEngine final : public HorizonEngine {
                       ProgressCounter& progress) const override {
     // Rays stop at the raster's edge, but the samples are spread up to the radius: with none
     // inside the raster (a radius of 1e30 m) every cell would see an open sky.
-    const Jacobian j =
-        terrain.frame.at(terrain.origin_col + 0.5 * terrain.width(), terrain.origin_row + 0.5 * terrain.height());
-    const double extent = std::hypot(terrain.width() * std::hypot(j.a, j.c), terrain.height() * std::hypot(j.b, j.d));
+    const double extent = ground_diagonal(terrain);
     if (samples_.distance.front() > extent) {
       std::ostringstream why;
       why << "--radius " << p_.radius << " m puts every sample of the sampled method beyond the raster (" << extent

@@ -784,8 +784,7 @@ class SweepEngine final : public HorizonEngine {
     std::vector<float> transposed;
   };
   Inputs inputs(const Terrain& terrain) const {
-    const Jacobian j = terrain.frame.at(terrain.origin_col, terrain.origin_row);
-    const double extent = std::hypot(terrain.width() * std::hypot(j.a, j.c), terrain.height() * std::hypot(j.b, j.d));
+    const double extent = ground_diagonal(terrain);
     Inputs in;
     in.c = curvature_coefficient(p_, p_.radius > 0 ? p_.radius : extent, terrain.frame.earth_radius());
     const int W = terrain.width(), H = terrain.height();
