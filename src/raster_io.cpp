@@ -337,6 +337,17 @@ CPLStringList creation_options(const std::string& format, GDALDataType type, con
   return opts;
 }
 
+// GDAL names the file it was writing, which is the temporary one: the user knows `path`.
+std::string naming_output(std::string why, const std::string& tmp, const std::string& path) {
+  for (const std::string& name : {tmp, std::filesystem::path(tmp).filename().string()}) {
+    const std::string final_name = name == tmp ? path : std::filesystem::path(path).filename().string();
+    for (std::size_t at = why.find(name); at != std::string::npos; at = why.find(name, at + final_name.size())) {
+      why.replace(at, name.size(), final_name);
+    }
+  }
+  return why;
+}
+
 // Closes a dataset written under `tmp`: GDAL 3.6 reports failures to flush only through the error
 // state. Returns why it failed, or "".
 std::string close_written(GDALDataset* ds) {
@@ -373,7 +384,7 @@ void commit_dataset(GDALDataset* mem, const std::string& path, const std::string
   const std::string why = out ? close_written(out) : last_gdal_error();
   if (!why.empty() || !out) {
     if (path_exists(tmp)) driver->Delete(tmp.c_str());
-    throw Error("cannot write '" + path + "': " + why);
+    throw Error("cannot write '" + path + "': " + naming_output(why, tmp, path));
   }
   move_into_place(driver, tmp, path);
 }
@@ -404,6 +415,36 @@ GDALRasterBand* band_of(GDALDataset* ds, int index, const std::string& path) {
 
 }  // namespace
 
+void check_output_format(const std::string& format, int bands, const std::vector<std::string>& user_options) {
+  init_gdal();
+  GDALDriver* driver = output_driver(format);
+  // A format that cannot hold float32 would round svf to bytes with only a GDAL warning.
+  if (const char* types = driver->GetMetadataItem(GDAL_DMD_CREATIONDATATYPES);
+      types && !std::strstr(types, "Float32")) {
+    throw Error("GDAL format '" + format + "' cannot hold float32 values (it writes " + types +
+                "); choose GTiff, COG, HFA or netCDF");
+  }
+  const CPLStringList opts = creation_options(format, GDT_Float32, user_options);
+  // Formats that only copy a finished dataset check it then, at the end of the run: try a
+  // 2 x 2 copy in memory now. (Formats created band by band fail at once when they fail.)
+  if (CSLFetchBoolean(driver->GetMetadata(), GDAL_DCAP_CREATE, FALSE)) return;
+  DatasetPtr probe = make_memory_dataset(2, 2, bands, GDT_Float32);
+  const char* ext = driver->GetMetadataItem(GDAL_DMD_EXTENSION);
+  const std::string name =
+      std::string("/vsimem/skyview-format-probe-") + std::to_string(::getpid()) + "." + (ext && *ext ? ext : "out");
+  CPLErrorReset();
+  GDALDataset* out = driver->CreateCopy(name.c_str(), probe.get(), FALSE, opts.List(), nullptr, nullptr);
+  std::string why = out ? close_written(out) : last_gdal_error();
+  if (why.rfind(name + ": ", 0) == 0) why.erase(0, name.size() + 2);  // the probe's name means nothing to the user
+  driver->Delete(name.c_str());
+  VSIUnlink(name.c_str());
+  CPLErrorReset();
+  if (!out || !why.empty()) {
+    throw Error("GDAL format '" + format + "' cannot write " + std::to_string(bands) + " float32 band" +
+                (bands == 1 ? "" : "s") + ": " + why);
+  }
+}
+
 // Formats that GDAL can create band by band are written in place under the temporary name; the
 // others (PNG, COG ...) only copy a finished dataset, so they get a memory dataset copied at finish().
 struct BandWriter::State {
@@ -426,13 +467,8 @@ BandWriter::BandWriter(const std::string& path, int width, int height, int bands
   s.width = width, s.height = height;
   s.options = options;
   check_output_writable(path, options.overwrite);
+  check_output_format(options.format, bands, options.creation_options);
   s.driver = output_driver(options.format);
-  // A format that cannot hold float32 would round svf to bytes with only a GDAL warning.
-  if (const char* types = s.driver->GetMetadataItem(GDAL_DMD_CREATIONDATATYPES);
-      types && !std::strstr(types, "Float32")) {
-    throw Error("GDAL format '" + options.format + "' cannot hold float32 values (it writes " + types +
-                "); choose GTiff, COG, HFA or netCDF");
-  }
   s.direct = CSLFetchBoolean(s.driver->GetMetadata(), GDAL_DCAP_CREATE, FALSE);
   if (s.direct) {
     const CPLStringList opts = creation_options(options.format, GDT_Float32, options.creation_options);
@@ -440,7 +476,7 @@ BandWriter::BandWriter(const std::string& path, int width, int height, int bands
     CPLErrorReset();
     s.ds.reset(s.driver->Create(s.tmp.c_str(), width, height, bands, GDT_Float32, opts.List()));
     if (!s.ds) {
-      const std::string why = last_gdal_error();
+      const std::string why = naming_output(last_gdal_error(), s.tmp, path);
       if (path_exists(s.tmp)) s.driver->Delete(s.tmp.c_str());
       throw Error("cannot write '" + path + "': " + why);
     }
@@ -474,7 +510,8 @@ void BandWriter::write_rows(int index, int row0, int rows, const float* values) 
   s.buffer.resize(std::max(s.buffer.size(), n));
   for (std::size_t i = 0; i < n; ++i) s.buffer[i] = std::isnan(values[i]) ? s.options.nodata : values[i];
   if (band->RasterIO(GF_Write, 0, row0, s.width, rows, s.buffer.data(), s.width, rows, GDT_Float32, 0, 0) != CE_None) {
-    throw Error("cannot write band " + std::to_string(index + 1) + " of '" + s.path + "': " + last_gdal_error());
+    throw Error("cannot write band " + std::to_string(index + 1) + " of '" + s.path +
+                "': " + naming_output(last_gdal_error(), s.tmp, s.path));
   }
 }
 
@@ -504,7 +541,7 @@ void BandWriter::finish() {
   const std::string why = close_written(s.ds.release());
   if (!why.empty()) {
     if (path_exists(s.tmp)) s.driver->Delete(s.tmp.c_str());
-    throw Error("cannot write '" + s.path + "': " + why);
+    throw Error("cannot write '" + s.path + "': " + naming_output(why, s.tmp, s.path));
   }
   move_into_place(s.driver, s.tmp, s.path);
 }

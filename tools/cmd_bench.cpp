@@ -1,4 +1,5 @@
 // skyview bench: speed against error of every horizon method on one raster.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -50,6 +51,14 @@ Runner setup(CLI::App& app) {
     ThreadLimit limit(o->threads);
     const std::vector<std::string> names{"bench.json", "bench.md", "bench.png"};
     const auto grid = default_bench_grid(split_list(o->methods));  // bad --methods before any folder is made
+    int finest = 0;
+    for (const BenchConfig& c : grid) finest = std::max(finest, c.params.directions);
+    if (finest > o->reference_directions && !o->quiet) {
+      std::fprintf(stderr,
+                   "Warning: the reference's %d directions are fewer than the %d of the finest configurations, whose "
+                   "errors then include the reference's own sector error\n",
+                   o->reference_directions, finest);
+    }
     std::error_code ec;
     std::filesystem::create_directories(o->out, ec);
     if (ec || !std::filesystem::is_directory(o->out))

@@ -12,7 +12,8 @@ Runner setup(CLI::App& app) {
   auto o = std::make_shared<HorizonJobOptions>();
   add_horizon_job_options(app, *o);
   app.footer("One band per direction, in degrees above the horizontal; band k is centred on azimuth 360*k/N.");
-  return [o] {
+  return [o, &app] {
+    refuse_unused(app, "--rays", false, "skyview svf (its Monte-Carlo svf bands)");
     ThreadLimit limit(o->out.threads);
     HorizonJobOptions opts = *o;
     opts.params.rays = 0;  // the ray cast's Monte-Carlo svf is not a horizon band

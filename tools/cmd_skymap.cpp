@@ -28,6 +28,7 @@ struct SkymapOptions {
   int size = 512;
   bool no_preview = false;
   OutputOptions out;
+  const CLI::App* app = nullptr;
 };
 
 std::unique_ptr<SkyModel> make_sky(const SkymapOptions& o) {
@@ -49,6 +50,14 @@ int run(const SkymapOptions& o) {
   if (o.size < 8 || o.size > 8192) throw Error("--size must be within 8 .. 8192");
   if (o.from.empty() != o.to.empty()) throw Error("give both --from and --to, or neither");
   if (!measured && o.from.empty()) throw Error("--from and --to are required for --sky " + o.sky);
+  const bool analytic_sun = o.sky == "preetham" || (o.sky == "isotropic" && !measured);
+  refuse_unused(*o.app, "--step", !measured, "analytic skies (an EPW gives one step per hourly record)");
+  refuse_unused(*o.app, "--turbidity", analytic_sun || o.sky == "hosek",
+                "--sky preetham, hosek, or isotropic without --epw");
+  refuse_unused(*o.app, "--albedo", o.sky == "hosek", "--sky hosek");
+  refuse_unused(*o.app, "--luminous-efficacy", analytic_sun, "--sky preetham, or isotropic without --epw");
+  if (!o.no_preview && !o.preview.empty()) require_extension(o.preview, {".png"}, "--preview");
+  refuse_unused(*o.app, "--preview", !o.no_preview, "runs without --no-preview");
   const std::string preview =
       o.no_preview
           ? ""
@@ -56,6 +65,7 @@ int run(const SkymapOptions& o) {
   if (!preview.empty() && preview == o.output) throw Error("the preview would overwrite OUT; give --preview");
   check_outputs_apart({o.output, preview}, {o.epw});
   check_output_writable(o.output, o.out.overwrite);
+  check_output_format(o.out.format, 2, o.out.creation_options);
   if (!preview.empty()) check_output_writable(preview, o.out.overwrite);
   const auto sky = make_sky(o);
 
@@ -75,20 +85,29 @@ int run(const SkymapOptions& o) {
   if (!(std::abs(site.latitude_deg) <= 90.0)) throw Error("--lat must be within -90 .. 90");
   if (!(std::abs(site.longitude_deg) <= 180.0)) throw Error("--lon must be within -180 .. 180");
   if (o.lat.has_value() != o.lon.has_value()) throw Error("give both --lat and --lon, or neither (with --epw)");
+  if (weather && o.lat && !o.out.quiet &&
+      (*o.lat != weather->location.latitude_deg || *o.lon != weather->location.longitude_deg)) {
+    std::fprintf(stderr, "Warning: the sun is placed for --lat %s --lon %s, not for the EPW's site (%s, %s)\n",
+                 number_text(*o.lat).c_str(), number_text(*o.lon).c_str(),
+                 number_text(weather->location.latitude_deg).c_str(),
+                 number_text(weather->location.longitude_deg).c_str());
+  }
 
   std::vector<ExposureStep> steps;
   std::map<std::string, std::string> meta;
   if (!o.tz.empty()) check_time_zone(o.tz);
   if (weather) {
     std::optional<TimePeriod> period;
-    if (!o.from.empty()) period = TimePeriod{parse_time(o.from, o.tz).unix_utc, parse_time(o.to, o.tz).unix_utc};
+    if (!o.from.empty())
+      period = TimePeriod{parse_time_option(o.from, o.tz, o.out.quiet).unix_utc,
+                          parse_time_option(o.to, o.tz, o.out.quiet).unix_utc};
     steps = epw_steps(*weather, site, period);
     meta["EPW"] = o.epw;
     meta["EPW_MISSING_SOLAR_VALUES"] = std::to_string(weather->missing_solar_values);
     meta["EPW_STEPS"] = "one hour per record at its irradiance instant (--step is not used)";
   } else {
-    steps = regular_steps(site, parse_time(o.from, o.tz).unix_utc, parse_time(o.to, o.tz).unix_utc,
-                          parse_duration_s(o.step));
+    steps = regular_steps(site, parse_time_option(o.from, o.tz, o.out.quiet).unix_utc,
+                          parse_time_option(o.to, o.tz, o.out.quiet).unix_utc, parse_duration_s(o.step));
     meta["STEP"] = o.step;
   }
   ThreadLimit limit(o.out.threads);
@@ -155,6 +174,7 @@ int run(const SkymapOptions& o) {
 
 Runner setup(CLI::App& app) {
   auto o = std::make_shared<SkymapOptions>();
+  o->app = &app;
   app.add_option("OUT", o->output, "Output raster (bands direct, diffuse)")->required();
   app.add_option("--lat", o->lat, "Latitude, degrees north (default with --epw: the file's)");
   app.add_option("--lon", o->lon, "Longitude, degrees east (default with --epw: the file's)");

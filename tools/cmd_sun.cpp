@@ -73,8 +73,8 @@ Period read_period(const Options& o) {
   const bool single = !o.time.empty();
   if (single == (!o.from.empty() || !o.to.empty())) throw Error("give either --time T or --from T1 --to T2");
   if (!single && (o.from.empty() || o.to.empty())) throw Error("--from and --to go together");
-  const ParsedTime a = parse_time(single ? o.time : o.from, o.tz);
-  const ParsedTime b = single ? a : parse_time(o.to, o.tz);
+  const ParsedTime a = parse_time_option(single ? o.time : o.from, o.tz, false);
+  const ParsedTime b = single ? a : parse_time_option(o.to, o.tz, false);
   Period p{a.unix_utc, b.unix_utc, parse_duration_s(o.step), {}};
   if (p.last < p.first) throw Error("--to is before --from");
   if ((p.last - p.first) / p.step > kMaxRows) throw Error("--step " + o.step + " gives more than 1e7 rows");

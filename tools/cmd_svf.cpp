@@ -79,6 +79,10 @@ Runner setup(CLI::App& app) {
       return p->grid == &SkyViewProducts::openness_negative;
     });
     HorizonJob job = prepare_horizon_job(opts, "svf", {*preview});
+    if (!preview->empty()) require_extension(*preview, {".png"}, "--preview");
+    const bool monte_carlo = job.engine->name() == "raycast" && job.engine->params().rays > 0;
+    check_output_format(o->out.format, static_cast<int>(chosen.size()) + (monte_carlo ? 2 : 0),
+                        o->out.creation_options);
     // Horizons are held a part at a time (compute_sky_view), so memory does not grow with the
     // number of directions.
     SkyViewProducts p;

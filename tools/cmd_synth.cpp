@@ -43,8 +43,17 @@ Runner setup(CLI::App& app) {
   app.footer(
       "lidar and footprints describe the same district of size x cell metres around the origin: 3 x 3 blocks, "
       "the middle one with a courtyard, the north-east one without a height attribute, two trees, a few birds.");
-  return [o] {
+  return [o, &app] {
+    const bool raster = o->kind != "lidar" && o->kind != "footprints";
+    if (o->kind == "lidar") require_extension(o->output, {".las"}, "the LAS output");
+    if (o->kind == "footprints") require_extension(o->output, {".geojson", ".json", ".gpkg", ".shp"}, "the footprints");
+    for (const char* name : {"--of", "--co"})
+      refuse_unused(app, name, raster, "the raster kinds (city, mountains, canyon, pit, plane)");
+    ThreadLimit limit(o->out.threads);
+    refuse_unused(app, "--density", o->kind == "lidar", "lidar");
+    refuse_unused(app, "--birds", o->kind == "lidar", "lidar");
     check_output_writable(o->output, o->out.overwrite);
+    if (raster) check_output_format(o->out.format, 1, o->out.creation_options);
     GeoReference g = local_grid(o->size, o->size, o->cell);
     g.geotransform[0] += o->x0;
     g.geotransform[3] += o->y0;

@@ -1,7 +1,13 @@
 #include "command.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <functional>
+
+#include "skyview/error.h"
 
 #include <tbb/global_control.h>
 
@@ -42,6 +48,31 @@ void add_output_options(CLI::App& app, OutputOptions& o) {
   app.add_flag("--overwrite", o.overwrite, "Replace an existing output");
   app.add_flag("-q,--quiet", o.quiet, "No progress on stderr");
   app.add_option("--threads", o.threads, "Worker threads (0 = all cores)")->check(non_negative_number());
+}
+
+void refuse_unused(const CLI::App& app, const std::string& option, bool used, const std::string& where) {
+  if (!used && app.count(option) > 0) throw Error(option + " applies only to " + where);
+}
+
+void require_extension(const std::string& path, const std::vector<std::string>& extensions, const std::string& what) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (std::find(extensions.begin(), extensions.end(), ext) != extensions.end()) return;
+  std::string list;
+  for (const std::string& e : extensions) list += (list.empty() ? "" : ", ") + e;
+  throw Error(what + " '" + path + "' must end in " + (extensions.size() > 1 ? "one of " : "") + list +
+              " (the format it is written in)");
+}
+
+ParsedTime parse_time_option(const std::string& text, const std::string& zone, bool quiet) {
+  const ParsedTime t = parse_time(text, zone);
+  if (t.ambiguous && !quiet) {
+    std::fprintf(stderr,
+                 "Warning: '%s' occurs twice in %s (clocks set back); taken as the earlier, %s; give a UTC offset "
+                 "to choose\n",
+                 text.c_str(), t.zone.c_str(), format_iso_local(t.unix_utc, t.utc_offset_s).c_str());
+  }
+  return t;
 }
 
 ThreadLimit::ThreadLimit(int threads) {

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "skyview/time_parse.h"
+
 namespace skyview::cli {
 
 using Runner = std::function<int()>;
@@ -46,6 +48,19 @@ const CLI::Validator& non_negative_number();
 const CLI::Validator& finite_number();
 // A number in [lo, hi]; NaN fails (CLI::Range lets it through: every comparison with it is false).
 CLI::Validator number_in(double lo, double hi);
+
+// Throws when `option` was given on the command line but the run will not use it (`used` is
+// false): "OPTION applies only to WHERE". A batch job would otherwise get the answer to another
+// question than the one it asked, without a word.
+void refuse_unused(const CLI::App& app, const std::string& option, bool used, const std::string& where);
+
+// Throws unless `path` ends in one of `extensions` (".png", compared without case): the file's
+// format is fixed by what writes it, and a name saying otherwise would mislead every reader.
+void require_extension(const std::string& path, const std::vector<std::string>& extensions, const std::string& what);
+
+// parse_time, warning on stderr (unless `quiet`) when a local time occurs twice and the earlier
+// instant is taken.
+ParsedTime parse_time_option(const std::string& text, const std::string& zone, bool quiet);
 
 // Limits oneTBB to `threads` workers while alive (0 = no limit).
 class ThreadLimit {

@@ -14,6 +14,7 @@
 namespace skyview::cli {
 
 void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
+  o.app = &app;
   app.add_option("input", o.input, "Input elevation raster (any GDAL format)")->required();
   app.add_option("output", o.output, "Output raster")->required();
   app.add_option("-b,--band", o.band, "Input band")->capture_default_str();
@@ -30,9 +31,9 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
          "--radius", o.params.radius,
          "Search radius in metres (march and sampled: default 500; sweep: unlimited, or every crossing within it)")
       ->check(positive_number());
-  app.add_option("--rays", o.params.rays, "Monte-Carlo rays per cell for raycast's direct svf (0 = none)")
+  app.add_option("--rays", o.params.rays, "Monte-Carlo rays per cell for the direct svf (raycast only; 0 = none)")
       ->capture_default_str();
-  app.add_option("--seed", o.params.seed, "Seed of the per-cell rotation (sampled)")->capture_default_str();
+  app.add_option("--seed", o.params.seed, "Seed of the per-cell rotation (sampled only)")->capture_default_str();
   app.add_option("--edge", o.edge,
                  "open: terrain beyond the raster does not occlude; nodata: cells whose search circle leaves the "
                  "raster get nodata")
@@ -46,13 +47,35 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
       ->check(finite_number());
   app.add_option("--max-error", o.max_error,
                  "Choose the cheapest method and parameters whose calibrated 99th-percentile svf error is below "
-                 "this (overrides --method, --directions, --samples, --radius)")
+                 "this; it sets --method, --directions, --samples and --radius, which are then refused")
       ->check(number_in(0.0, 1.0));
   app.add_flag("!--no-early-exit", o.params.early_exit,
                "Disable early termination (march and sampled: the max-height pyramid; sweep: skipped far-field "
                "searches); same results");
   add_output_options(app, o.out);
 }
+
+namespace {
+
+// An option the run would not use is refused: a batch job that asks for --rays 4096 with the
+// sweep, or for --max-error and --directions 64 together, would otherwise get an answer to
+// another question than it asked, without a word.
+// `method` is the one the run uses (--max-error's choice, if given).
+void check_options_apply(const HorizonJobOptions& o, const std::string& method) {
+  if (!o.app) return;
+  if (o.max_error >= 0.0) {
+    for (const char* name : {"--method", "--directions", "--samples", "--radius"}) {
+      refuse_unused(*o.app, name, false,
+                    "runs without --max-error, which chooses --method, --directions, --samples and --radius itself");
+    }
+  }
+  const std::string used_by = " (this run uses " + method + ")";
+  refuse_unused(*o.app, "--rays", method == "raycast", "--method raycast" + used_by);
+  refuse_unused(*o.app, "--seed", method == "sampled", "--method sampled" + used_by);
+  refuse_unused(*o.app, "--samples", method == "sampled" || method == "sweep", "--method sampled or sweep" + used_by);
+}
+
+}  // namespace
 
 HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& command,
                                const std::vector<std::string>& more_outputs) {
@@ -74,6 +97,7 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
     method = choice->method;
     params = choice->params;
   }
+  check_options_apply(o, method);
   job.engine = make_horizon_engine(method, params);
   if (job.edge == EdgeMode::nodata && std::isinf(job.engine->radius())) {
     throw Error(std::string("--edge nodata blanks the cells whose search reaches the raster's edge, which with an ") +

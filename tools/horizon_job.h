@@ -23,6 +23,7 @@ struct HorizonJobOptions {
   double max_error = -1.0;  // >= 0: choose method and parameters for this p99 svf error
   HorizonParams params;
   OutputOptions out;
+  const CLI::App* app = nullptr;  // to tell options given from defaults (set by add_horizon_job_options)
 };
 
 void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o);

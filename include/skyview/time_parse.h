@@ -18,11 +18,13 @@ struct ParsedTime {
   double unix_utc = 0.0;      // the instant, seconds since 1970-01-01T00:00Z
   double utc_offset_s = 0.0;  // local minus UTC at that instant
   std::string zone;           // IANA name when one was given (directly or as default), else empty
+  bool ambiguous = false;     // the local time occurs twice in `zone` (clocks set back); the earlier is taken
 };
 
 // Parses `text`. When it carries neither an offset nor a zone, `default_zone` is used (an IANA
 // name, or "UTC"); when that is empty too, throws. A local time that a DST change skips throws;
-// one that occurs twice resolves to the earlier instant. Throws skyview::Error on bad input or
+// one that occurs twice resolves to the earlier instant (and sets `ambiguous`). Second 60 is
+// accepted only in a leap second: the last second of 30 June or 31 December, UTC. Throws skyview::Error on bad input or
 // years outside kMinSolarYear..kMaxSolarYear.
 ParsedTime parse_time(const std::string& text, const std::string& default_zone = "");
 
@@ -39,7 +41,8 @@ double utc_offset_s(const std::string& zone, double unix_time_utc);
 // (a single utc_offset_s call re-reads the zone file, ~0.1 ms).
 std::vector<double> utc_offsets_s(const std::string& zone, const std::vector<double>& unix_times_utc);
 
-// The instant of a wall-clock time in `zone` (earlier one when ambiguous; throws when skipped).
-double unix_from_local(const std::string& zone, const CivilDateTime& local);
+// The instant of a wall-clock time in `zone` (earlier one when ambiguous, which `ambiguous` then
+// tells; throws when skipped).
+double unix_from_local(const std::string& zone, const CivilDateTime& local, bool* ambiguous = nullptr);
 
 }  // namespace skyview

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <regex>
 #include <sstream>
+#include <vector>
 
 #include "skyview/civil_time.h"
 #include "skyview/error.h"
@@ -74,6 +75,9 @@ EpwFile read_epw(const std::string& path) {
   static const std::regex offset_comment(R"(Irradiance Time Offset \(h\)\s*:\s*([-+0-9.eE]+))", std::regex::icase);
   std::string line;
   int number = 0;
+  // Line of the record seen for each month, day and hour: an EPW holds one year, so a repeated
+  // hour would be counted twice.
+  std::vector<int> seen_at(13 * 32 * 25, 0);
   while (std::getline(in, line)) {
     ++number;
     if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -104,6 +108,13 @@ EpwFile read_epw(const std::string& path) {
           file.irradiance_time_offset_h = offset;
         }
       } else if (key == "DATA PERIODS") {
+        // Records per hour: each record is read as one hour, so sub-hourly data would count n times.
+        double per_hour = 1.0;
+        if (fields.size() > 2 && (!parse_number(fields[2], per_hour) || per_hour != 1.0)) {
+          fail(path, number,
+               "DATA PERIODS gives " + trim(fields[2]) +
+                   " records per hour; skyview reads hourly EPW files only (one record per hour)");
+        }
         in_data = true;
       }
       continue;
@@ -120,6 +131,13 @@ EpwFile read_epw(const std::string& path) {
     r.day = static_cast<int>(day);
     r.hour = static_cast<int>(hour);
     if (r.day > days_in_month(r.year, r.month)) fail(path, number, "data record has a day beyond its month");
+    int& first = seen_at[(r.month * 32 + r.day) * 25 + r.hour];
+    if (first > 0) {
+      fail(path, number,
+           "data record repeats month " + std::to_string(r.month) + ", day " + std::to_string(r.day) + ", hour " +
+               std::to_string(r.hour) + " of line " + std::to_string(first) + " (an EPW file holds one year)");
+    }
+    first = number;
     r.global_horizontal = solar_value(fields[13], file.missing_solar_values);
     r.direct_normal = solar_value(fields[14], file.missing_solar_values);
     r.diffuse_horizontal = solar_value(fields[15], file.missing_solar_values);

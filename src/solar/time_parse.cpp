@@ -70,6 +70,18 @@ std::vector<std::string> split_whitespace(const std::string& text) {
   return parts;
 }
 
+// Second 60 names a leap second, which UTC inserts only at the end of 30 June or 31 December:
+// anywhere else it is a typing error that would silently become the next minute.
+void check_leap_second(const std::string& text, const CivilDateTime& local, double unix_utc) {
+  if (local.second < 60.0) return;
+  const double after = std::floor(unix_utc);  // the leap second's instant, as POSIX time counts it
+  const auto days = static_cast<std::int64_t>(std::floor(after / 86400.0));
+  const CivilDate next = civil_from_days(days);
+  if (after == static_cast<double>(days) * 86400.0 && next.day == 1 && (next.month == 1 || next.month == 7)) return;
+  throw Error("'" + text + "' has second 60, which exists only in a leap second (23:59:60 UTC on 30 June or " +
+              "31 December)");
+}
+
 }  // namespace
 
 ParsedTime parse_time(const std::string& text, const std::string& default_zone) {
@@ -136,6 +148,7 @@ ParsedTime parse_time(const std::string& text, const std::string& default_zone) 
   if (offset) {
     result.utc_offset_s = *offset;
     result.unix_utc = seconds_from_civil(local) - *offset;
+    check_leap_second(text, local, result.unix_utc);
     return result;
   }
   if (zone.empty()) zone = default_zone;
@@ -144,8 +157,9 @@ ParsedTime parse_time(const std::string& text, const std::string& default_zone) 
   }
   check_time_zone(zone);
   result.zone = zone;
-  result.unix_utc = unix_from_local(zone, local);
+  result.unix_utc = unix_from_local(zone, local, &result.ambiguous);
   result.utc_offset_s = utc_offset_s(zone, result.unix_utc);
+  check_leap_second(text, local, result.unix_utc);
   return result;
 }
 

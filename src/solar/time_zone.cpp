@@ -96,17 +96,22 @@ std::vector<double> utc_offsets_s(const std::string& zone, const std::vector<dou
   return offsets;
 }
 
-double unix_from_local(const std::string& zone, const CivilDateTime& local) {
+double unix_from_local(const std::string& zone, const CivilDateTime& local, bool* ambiguous) {
   const double wall = seconds_from_civil(local);
+  if (ambiguous) *ambiguous = false;
   if (is_utc(zone)) return wall;
   // The offsets a day either side bracket any single transition; a candidate instant is valid
   // when the zone's offset at that instant is the one that produced it.
   const double offsets[2] = {utc_offset_s(zone, wall - 86400.0), utc_offset_s(zone, wall + 86400.0)};
   std::optional<double> earliest;
+  bool twice = false;
   for (double offset : offsets) {
     const double candidate = wall - offset;
-    if (utc_offset_s(zone, candidate) == offset && (!earliest || candidate < *earliest)) earliest = candidate;
+    if (utc_offset_s(zone, candidate) != offset) continue;
+    if (earliest && candidate != *earliest) twice = true;
+    if (!earliest || candidate < *earliest) earliest = candidate;
   }
+  if (ambiguous) *ambiguous = twice;
   if (!earliest) {
     throw Error("local time " + format_iso_utc(wall).substr(0, 19) + " does not exist in " + zone +
                 " (skipped by a clock change)");

@@ -226,6 +226,45 @@ TEST_F(CliErrors, NumbersThatSteerTheRunMustBeNumbers) {
   EXPECT_FALSE(std::filesystem::exists(dir + "/o.tif"));
 }
 
+// An option the run would not use is refused, not ignored: the user asked a different question.
+TEST_F(CliErrors, OptionsTheRunWouldNotUseAreRefused) {
+  const std::string o = " " + dir + "/o.tif";
+  expect_one_line_error(run_skyview("svf " + good + o + " --rays 1024", dir),
+                        "--rays applies only to --method raycast (this run uses sweep)");
+  expect_one_line_error(run_skyview("svf " + good + o + " --method march --samples 8", dir),
+                        "--samples applies only to --method sampled or sweep (this run uses march)");
+  expect_one_line_error(run_skyview("svf " + good + o + " --method raycast --seed 3", dir),
+                        "--seed applies only to --method sampled");
+  expect_one_line_error(run_skyview("svf " + good + o + " --max-error 0.02 --directions 64", dir),
+                        "--directions applies only to runs without --max-error");
+  expect_one_line_error(run_skyview("svf " + good + o + " --max-error 0.02 --method march", dir),
+                        "--method applies only to runs without --max-error");
+  expect_one_line_error(run_skyview("horizon " + good + o + " --method raycast --rays 64", dir),
+                        "--rays applies only to skyview svf");
+  expect_one_line_error(run_skyview("synth lidar " + dir + "/l.las -of GTiff", dir),
+                        "--of applies only to the raster kinds");
+  EXPECT_FALSE(std::filesystem::exists(dir + "/o.tif"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/l.las"));
+  EXPECT_EQ(run_skyview("svf " + good + o + " --method raycast --rays 16 --directions 4", dir).exit_code, 0);
+}
+
+// A file's name must say the format it is written in, and a format that cannot hold the bands is
+// refused before the work, not after it.
+TEST_F(CliErrors, OutputsMustBeWritableInTheirFormatBeforeTheWork) {
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --preview " + dir + "/p.jpg", dir),
+                        "must end in .png");
+  expect_one_line_error(run_skyview("synth lidar " + dir + "/l.tif", dir), "must end in .las");
+  expect_one_line_error(run_skyview("synth footprints " + dir + "/f.tif", dir),
+                        "must end in one of .geojson, .json, .gpkg, .shp");
+  const RunResult r = run_skyview("svf " + good + " " + dir + "/o.asc -of AAIGrid", dir);
+  expect_one_line_error(r, "GDAL format 'AAIGrid' cannot write 5 float32 bands: AAIG driver doesn't support 5 bands");
+  EXPECT_EQ(r.err.find("vsimem"), std::string::npos) << r.err;
+  EXPECT_EQ(run_skyview("svf " + good + " " + dir + "/o.asc -of AAIGrid --products svf", dir).exit_code, 0);
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    EXPECT_EQ(e.path().filename().string().find("skyview-tmp"), std::string::npos) << e.path();
+  }
+}
+
 // Runs whose every cell would come out blank or open are refused instead of written.
 TEST_F(CliErrors, RunsThatCouldOnlyGiveBlankOrOpenSkiesAreRefused) {
   expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --edge nodata", dir),

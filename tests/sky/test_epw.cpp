@@ -1,6 +1,7 @@
 // EPW reading, including the PVGIS file's quirks and UTC convention.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -73,6 +74,38 @@ TEST(Epw, ByteOrderMarkAndImpossibleIrradiance) {
   EXPECT_NEAR(f.location.latitude_deg, original.location.latitude_deg, 1e-12);
   EXPECT_EQ(f.missing_solar_values, original.missing_solar_values + (before > 1600.0 ? 0 : 1));
   EXPECT_EQ(f.records[12].global_horizontal, 0.0);
+  std::filesystem::remove_all(dir);
+}
+
+// An EPW holds one year of hourly records: a repeated hour or sub-hourly records would each be
+// counted as a whole hour, so both are refused with the line that shows it.
+TEST(Epw, RepeatedHoursAndSubHourlyDataAreRefused) {
+  SKYVIEW_REQUIRE_SHARED(path, "weather/chicago.epw");
+  std::ifstream in(path, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto dir = std::filesystem::temp_directory_path() / "skyview_epw_repeat";
+  std::filesystem::create_directories(dir);
+  auto refused = [&](const std::string& edited_text, const std::string& fragment) {
+    const std::string edited = (dir / "edited.epw").string();
+    std::ofstream(edited, std::ios::binary) << edited_text;
+    try {
+      read_epw(edited);
+      ADD_FAILURE() << "accepted a file that should show: " << fragment;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
+  };
+  // Line 9 is the first record (1 January, hour 1): append a copy of it at the end.
+  std::size_t first = 0;
+  for (int line = 0; line < 8; ++line) first = text.find('\n', first) + 1;
+  const std::string record = text.substr(first, text.find('\n', first) + 1 - first);
+  const int last_line = static_cast<int>(std::count(text.begin(), text.end(), '\n')) + 1;
+  refused(text + record, ":" + std::to_string(last_line) + ": data record repeats month 1, day 1, hour 1 of line 9");
+  std::string quarter_hours = text;
+  const std::size_t periods = quarter_hours.find("DATA PERIODS,1,1,");
+  ASSERT_NE(periods, std::string::npos);
+  quarter_hours.replace(periods, 17, "DATA PERIODS,1,4,");
+  refused(quarter_hours, "DATA PERIODS gives 4 records per hour");
   std::filesystem::remove_all(dir);
 }
 

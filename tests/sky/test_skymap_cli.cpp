@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "sky_test_support.h"
 
@@ -38,6 +39,44 @@ TEST(SkymapCli, WritesBandsAndPreview) {
   EXPECT_TRUE(std::filesystem::exists(out));
   EXPECT_TRUE(std::filesystem::exists(dir / "map.png"));
   EXPECT_EQ(run("--help").code, 0);
+  std::filesystem::remove_all(dir);
+}
+
+// Options the chosen sky does not use are refused rather than ignored; a site that overrides the
+// EPW's is said.
+TEST(SkymapCli, OptionsTheSkyDoesNotUseAreRefused) {
+  const std::string epw = skyview::sky_test::shared_data("weather/chicago.epw");
+  struct Case {
+    std::string args, message;
+  };
+  std::vector<Case> cases{
+      {"--sky hosek --luminous-efficacy 100 --lat 1 --lon 1 --from 2024-01-01T00:00Z --to 2024-01-02T00:00Z",
+       "--luminous-efficacy applies only to --sky preetham"},
+      {"--albedo 0.5 --lat 1 --lon 1 --from 2024-01-01T00:00Z --to 2024-01-02T00:00Z", "--albedo applies only to"},
+      {"--lat 1 --lon 1 --from 2024-01-01T00:00Z --to 2024-01-02T00:00Z --preview x.jpg",
+       "--preview 'x.jpg' must end in .png"}};
+  if (!epw.empty()) {
+    cases.push_back({"--sky perez-epw --epw " + epw + " --step 10m", "--step applies only to analytic skies"});
+    cases.push_back({"--sky perez-epw --epw " + epw + " --turbidity 3", "--turbidity applies only to"});
+  }
+  for (const Case& c : cases) {
+    const bool preview = c.args.find("--preview") != std::string::npos;
+    const Result r = run("x.tif " + std::string(preview ? "" : "--no-preview ") + c.args);
+    EXPECT_NE(r.code, 0) << c.args;
+    EXPECT_NE(r.output.find(c.message), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  }
+  if (epw.empty()) GTEST_SKIP() << "../shared/data/weather/chicago.epw not found";
+  const auto dir = std::filesystem::temp_directory_path() / "skyview_skymap_site";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const Result moved = run((dir / "m.tif").string() + " --no-preview --size 16 --sky perez-epw --epw " + epw +
+                           " --lat 45 --lon 7 --from 2024-06-21T00:00Z --to 2024-06-22T00:00Z");
+  EXPECT_EQ(moved.code, 0) << moved.output;
+  EXPECT_NE(
+      moved.output.find("Warning: the sun is placed for --lat 45 --lon 7, not for the EPW's site (41.98, -87.92)"),
+      std::string::npos)
+      << moved.output;
   std::filesystem::remove_all(dir);
 }
 

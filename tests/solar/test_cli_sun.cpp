@@ -63,6 +63,23 @@ TEST(SunCli, PeriodRowsAndEvents) {
   EXPECT_NE(r.out.find("polar_night"), std::string::npos) << r.out;
 }
 
+// A local time that happens twice is taken as the earlier and said so; second 60 outside a leap
+// second is refused.
+TEST(SunCli, AmbiguousLocalTimeIsSaid) {
+  SunRun r = run_sun("--lat 37.98 --lon 23.73 --time '2024-10-27T03:30 Europe/Athens' --csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\n2024-10-27T00:30:00Z,"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("Warning: '2024-10-27T03:30 Europe/Athens' occurs twice in Europe/Athens (clocks set back); "
+                       "taken as the earlier, 2024-10-27T03:30:00+03:00"),
+            std::string::npos)
+      << r.err;
+  r = run_sun("--lat 37.98 --lon 23.73 --time '2024-10-27T05:30 Europe/Athens' --csv");
+  EXPECT_EQ(r.err, "");
+  r = run_sun("--lat 37.98 --lon 23.73 --time 2024-10-27T12:30:60Z");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("exists only in a leap second"), std::string::npos) << r.err;
+}
+
 TEST(SunCli, HelpWorks) {
   const SunRun r = run_sun("--help");
   EXPECT_EQ(r.exit_code, 0);

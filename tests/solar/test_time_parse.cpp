@@ -57,7 +57,12 @@ TEST(TimeParse, IanaZonesWithDaylightSaving) {
   EXPECT_DOUBLE_EQ(parse_time("2024-06-21 12:00 America/Denver").unix_utc, seconds_from_civil({{2024, 6, 21}, 18}));
   EXPECT_DOUBLE_EQ(parse_time("2024-06-21T12:00 UTC").unix_utc, seconds_from_civil({{2024, 6, 21}, 12}));
   // 03:30 happens twice on 2024-10-27 in Athens: the earlier (EEST, +03:00) is chosen.
-  EXPECT_DOUBLE_EQ(parse_time("2024-10-27T03:30 Europe/Athens").unix_utc, seconds_from_civil({{2024, 10, 27}, 0, 30}));
+  const ParsedTime twice = parse_time("2024-10-27T03:30 Europe/Athens");
+  EXPECT_DOUBLE_EQ(twice.unix_utc, seconds_from_civil({{2024, 10, 27}, 0, 30}));
+  EXPECT_TRUE(twice.ambiguous);
+  EXPECT_EQ(twice.utc_offset_s, 3 * 3600.0);
+  EXPECT_FALSE(parse_time("2024-10-27T04:30 Europe/Athens").ambiguous);
+  EXPECT_FALSE(summer.ambiguous);
   // 03:30 never happens on 2024-03-31 in Athens.
   EXPECT_THROW(parse_time("2024-03-31T03:30 Europe/Athens"), Error);
   EXPECT_EQ(utc_offset_s("Asia/Kolkata", 0.0), 5.5 * 3600.0);
@@ -92,6 +97,24 @@ TEST(TimeParse, BadInputIsOneLineError) {
   }
   EXPECT_NO_THROW(parse_time("2024-02-29T00:00Z"));
   EXPECT_NO_THROW(parse_time("2000-02-29T00:00Z"));
+}
+
+// Second 60 exists only in a leap second, at the end of 30 June or 31 December UTC, wherever the
+// clock that shows it is.
+TEST(TimeParse, SecondSixtyOnlyInALeapSecond) {
+  EXPECT_DOUBLE_EQ(parse_time("2016-12-31T23:59:60Z").unix_utc, seconds_from_civil({{2017, 1, 1}}));
+  EXPECT_DOUBLE_EQ(parse_time("2015-06-30T23:59:60.5Z").unix_utc, seconds_from_civil({{2015, 7, 1}}) + 0.5);
+  EXPECT_DOUBLE_EQ(parse_time("2017-01-01T00:59:60+01:00").unix_utc, seconds_from_civil({{2017, 1, 1}}));
+  EXPECT_NO_THROW(parse_time("2017-01-01T00:59:60 Europe/Paris"));
+  for (const char* bad : {"2016-12-30T23:59:60Z", "2016-12-31T23:58:60Z", "2016-12-31T23:59:60+01:00",
+                          "2016-06-30T12:30:60 Europe/Paris"}) {
+    try {
+      parse_time(bad);
+      ADD_FAILURE() << "accepted '" << bad << "'";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("leap second"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(TimeParse, Durations) {
