@@ -212,7 +212,10 @@ void plot_bench(const std::string& png_path, const std::string& title, const std
     cv::putText(img, l.str(), px(std::pow(10, lt0), std::pow(10, d)) + cv::Point(-75, 5), cv::FONT_HERSHEY_SIMPLEX,
                 0.45, black);
   }
-  cv::putText(img, title, cv::Point(left, 30), cv::FONT_HERSHEY_SIMPLEX, 0.6, black);
+  // Centred above the plot, clear of the axis label at its top left.
+  int baseline = 0;
+  const cv::Size title_size = cv::getTextSize(title, cv::FONT_HERSHEY_SIMPLEX, 0.6, 1, &baseline);
+  cv::putText(img, title, cv::Point((W - title_size.width) / 2, 24), cv::FONT_HERSHEY_SIMPLEX, 0.6, black);
   cv::putText(img, "time per run (log)", cv::Point(W / 2 - 60, H - 20), cv::FONT_HERSHEY_SIMPLEX, 0.5, black);
   cv::putText(img, "p99 |svf error|", cv::Point(5, top - 10), cv::FONT_HERSHEY_SIMPLEX, 0.5, black);
   const std::map<std::string, cv::Scalar> colour{
