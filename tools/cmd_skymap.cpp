@@ -1,5 +1,6 @@
 // skyview skymap: the directional exposure map of the sky over a period (direct and diffuse
 // bands, Wh m-2 sr-1, Blinn–Newell longitude/latitude layout) plus a PNG preview.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -15,6 +16,7 @@
 #include "skyview/exposure_steps.h"
 #include "skyview/number_text.h"
 #include "skyview/raster_io.h"
+#include "skyview/sky_model.h"
 #include "skyview/sky_models.h"
 #include "skyview/time_parse.h"
 
@@ -137,6 +139,21 @@ int run(const SkymapOptions& o) {
       "Blinn-Newell longitude/latitude: column x = azimuth [x,x+1)*360/width deg clockwise from north (N at the "
       "left edge, S in the middle); row y = zenith angle [y,y+1)*90/height deg (zenith at the top row)";
   meta["GLOBAL_HORIZONTAL_WH_M2"] = number_text(direct_h + diffuse_h);
+  // No sky can deliver more than arrives at the top of the atmosphere; Preetham's can at high
+  // turbidity (its diffuse part is a fitted distribution with no energy balance, docs/sky.md).
+  double extraterrestrial_h = 0.0;
+  for (const ExposureStep& s : steps) {
+    extraterrestrial_h += extraterrestrial_normal_irradiance(s.conditions.day_of_year) *
+                          std::max(0.0, std::cos(s.conditions.sun_zenith)) * s.hours;
+  }
+  meta["EXTRATERRESTRIAL_HORIZONTAL_WH_M2"] = number_text(extraterrestrial_h);
+  if (direct_h + diffuse_h > extraterrestrial_h && !o.out.quiet) {
+    std::fprintf(stderr,
+                 "Warning: the sky's global horizontal exposure, %.1f kWh/m2, exceeds the %.1f kWh/m2 outside the "
+                 "atmosphere%s\n",
+                 (direct_h + diffuse_h) / 1000, extraterrestrial_h / 1000,
+                 analytic_sun ? " (Preetham's diffuse part at high turbidity; see docs/sky.md)" : "");
+  }
   meta["DIRECT_HORIZONTAL_WH_M2"] = number_text(direct_h);
   meta["DIFFUSE_HORIZONTAL_WH_M2"] = number_text(diffuse_h);
   meta["COMMAND"] = command_line();

@@ -80,6 +80,23 @@ TEST(SkymapCli, OptionsTheSkyDoesNotUseAreRefused) {
   std::filesystem::remove_all(dir);
 }
 
+// A sky that delivers more than arrives outside the atmosphere is said: Preetham's does at
+// turbidity 10 with the sun at the zenith, not at 2.5.
+TEST(SkymapCli, ExposureAboveTheExtraterrestrialIsSaid) {
+  const auto dir = std::filesystem::temp_directory_path() / "skyview_skymap_energy";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string noon = " --no-preview --size 32 --lat 0 --lon 0 --from 2024-03-20T11:37Z --to 2024-03-20T12:37Z";
+  const Result clear = run((dir / "a.tif").string() + noon + " --turbidity 2.5");
+  EXPECT_EQ(clear.code, 0) << clear.output;
+  EXPECT_EQ(clear.output.find("Warning"), std::string::npos) << clear.output;
+  const Result hazy = run((dir / "b.tif").string() + noon + " --turbidity 10");
+  EXPECT_EQ(hazy.code, 0) << hazy.output;
+  EXPECT_NE(hazy.output.find("outside the atmosphere (Preetham's diffuse part at high turbidity"), std::string::npos)
+      << hazy.output;
+  std::filesystem::remove_all(dir);
+}
+
 TEST(SkymapCli, BadInputIsOneErrorLine) {
   for (const char* args :
        {"x.tif --lat 95 --lon 0 --from 2024-01-01T00:00Z --to 2024-01-02T00:00Z", "x.tif --sky perez-epw",
