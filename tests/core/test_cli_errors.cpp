@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <utility>
 
 #include <gdal_priv.h>
 
@@ -229,20 +230,17 @@ TEST_F(CliErrors, NumbersThatSteerTheRunMustBeNumbers) {
 // An option the run would not use is refused, not ignored: the user asked a different question.
 TEST_F(CliErrors, OptionsTheRunWouldNotUseAreRefused) {
   const std::string o = " " + dir + "/o.tif";
-  expect_one_line_error(run_skyview("svf " + good + o + " --rays 1024", dir),
-                        "--rays applies only to --method raycast (this run uses sweep)");
-  expect_one_line_error(run_skyview("svf " + good + o + " --method march --samples 8", dir),
-                        "--samples applies only to --method sampled or sweep (this run uses march)");
-  expect_one_line_error(run_skyview("svf " + good + o + " --method raycast --seed 3", dir),
-                        "--seed applies only to --method sampled");
-  expect_one_line_error(run_skyview("svf " + good + o + " --max-error 0.02 --directions 64", dir),
-                        "--directions applies only to runs without --max-error");
-  expect_one_line_error(run_skyview("svf " + good + o + " --max-error 0.02 --method march", dir),
-                        "--method applies only to runs without --max-error");
-  expect_one_line_error(run_skyview("horizon " + good + o + " --method raycast --rays 64", dir),
-                        "--rays applies only to skyview svf");
-  expect_one_line_error(run_skyview("synth lidar " + dir + "/l.las -of GTiff", dir),
-                        "--of applies only to the raster kinds");
+  const std::pair<std::string, std::string> refused[] = {
+      {"svf " + good + o + " --rays 1024", "--rays applies only to --method raycast (this run uses sweep)"},
+      {"svf " + good + o + " --method march --samples 8",
+       "--samples applies only to --method sampled or sweep (this run uses march)"},
+      {"svf " + good + o + " --method raycast --seed 3", "--seed applies only to --method sampled"},
+      {"svf " + good + o + " --max-error 0.02 --directions 64",
+       "--directions applies only to runs without --max-error"},
+      {"svf " + good + o + " --max-error 0.02 --method march", "--method applies only to runs without --max-error"},
+      {"horizon " + good + o + " --method raycast --rays 64", "--rays applies only to skyview svf"},
+      {"synth lidar " + dir + "/l.las -of GTiff", "--of applies only to the raster kinds"}};
+  for (const auto& [args, message] : refused) expect_one_line_error(run_skyview(args, dir), message);
   EXPECT_FALSE(std::filesystem::exists(dir + "/o.tif"));
   EXPECT_FALSE(std::filesystem::exists(dir + "/l.las"));
   EXPECT_EQ(run_skyview("svf " + good + o + " --method raycast --rays 16 --directions 4", dir).exit_code, 0);
