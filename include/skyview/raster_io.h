@@ -100,8 +100,9 @@ void write_preview_png(const std::string& path, int width, int height, const flo
 void check_output_writable(const std::string& path, bool overwrite);
 
 // Refuses, before any computation, a GDAL format that cannot write `bands` float32 bands with
-// these creation options (unknown, writes no file, rounds floats, or refuses the band count, as
-// AAIGrid does for more than one): the run would otherwise fail, or round, only at the end.
+// these creation options (unknown, writes no file, rounds floats, refuses the band count, as
+// AAIGrid does for more than one, or keeps fewer, as XYZ does): the run would otherwise fail,
+// round or lose bands only at the end.
 void check_output_format(const std::string& format, int bands, const std::vector<std::string>& creation_options);
 
 // Refuses, before any computation, an output that is also an input or another output (by the

@@ -257,6 +257,9 @@ TEST_F(CliErrors, OutputsMustBeWritableInTheirFormatBeforeTheWork) {
   const RunResult r = run_skyview("svf " + good + " " + dir + "/o.asc -of AAIGrid", dir);
   expect_one_line_error(r, "GDAL format 'AAIGrid' cannot write 5 float32 bands: AAIG driver doesn't support 5 bands");
   EXPECT_EQ(r.err.find("vsimem"), std::string::npos) << r.err;
+  // XYZ writes only the first band, with a warning: counted back from the probe.
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.xyz -of XYZ", dir),
+                        "GDAL format 'XYZ' keeps 1 of 5 float32 bands");
   EXPECT_EQ(run_skyview("svf " + good + " " + dir + "/o.asc -of AAIGrid --products svf", dir).exit_code, 0);
   for (const auto& e : std::filesystem::directory_iterator(dir)) {
     EXPECT_EQ(e.path().filename().string().find("skyview-tmp"), std::string::npos) << e.path();
