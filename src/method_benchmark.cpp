@@ -9,6 +9,7 @@
 #include <functional>
 #include <iomanip>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "skyview/error.h"
@@ -28,12 +29,9 @@ std::string BenchConfig::label() const {
 std::vector<BenchConfig> default_bench_grid(const std::vector<std::string>& methods) {
   if (methods.empty()) throw Error("no method given (sampled, march, sweep)");
   std::vector<BenchConfig> grid;
-  for (std::size_t i = 0; i < methods.size(); ++i) {
-    const std::string& m = methods[i];
-    if (std::find(methods.begin(), methods.begin() + static_cast<std::ptrdiff_t>(i), m) !=
-        methods.begin() + static_cast<std::ptrdiff_t>(i)) {
-      throw Error("method '" + m + "' given twice");
-    }
+  std::set<std::string> seen;
+  for (const std::string& m : methods) {
+    if (!seen.insert(m).second) throw Error("method '" + m + "' given twice");
     if (m == "sampled") {
       for (int d : {8, 16, 32}) {
         for (int s : {8, 16, 32, 64}) {

@@ -432,23 +432,25 @@ void check_output_format(const std::string& format, int bands, const std::vector
   const char* ext = driver->GetMetadataItem(GDAL_DMD_EXTENSION);
   const std::string name =
       std::string("/vsimem/skyview-format-probe-") + std::to_string(::getpid()) + "." + (ext && *ext ? ext : "out");
-  CPLPushErrorHandler(CPLQuietErrorHandler);  // the probe's warnings would only confuse
-  CPLErrorReset();
-  GDALDataset* out = driver->CreateCopy(name.c_str(), probe.get(), FALSE, opts.List(), nullptr, nullptr);
-  std::string why = out ? close_written(out) : last_gdal_error();
-  if (why.rfind(name + ": ", 0) == 0) why.erase(0, name.size() + 2);  // the probe's name means nothing to the user
-  // Some formats (XYZ) keep the first band with only a warning: count what a reader gets back.
+  std::string why;
   int kept = bands;
-  if (out && why.empty()) {
-    GDALDatasetUniquePtr back(GDALDataset::Open(name.c_str(), GDAL_OF_RASTER));
-    kept = back ? back->GetRasterCount() : bands;
+  {
+    const CPLErrorHandlerPusher quiet(CPLQuietErrorHandler);  // the probe's warnings would only confuse
+    CPLErrorReset();
+    GDALDataset* out = driver->CreateCopy(name.c_str(), probe.get(), FALSE, opts.List(), nullptr, nullptr);
+    why = out ? close_written(out) : last_gdal_error();
+    if (why.rfind(name + ": ", 0) == 0) why.erase(0, name.size() + 2);  // the probe's name means nothing here
+    // Some formats (XYZ) keep the first band with only a warning: count what a reader gets back.
+    if (out && why.empty()) {
+      GDALDatasetUniquePtr back(GDALDataset::Open(name.c_str(), GDAL_OF_RASTER));
+      if (back) kept = back->GetRasterCount();
+    }
+    driver->Delete(name.c_str());
+    VSIUnlink(name.c_str());
+    CPLErrorReset();
   }
-  driver->Delete(name.c_str());
-  VSIUnlink(name.c_str());
-  CPLErrorReset();
-  CPLPopErrorHandler();
   const std::string what = std::to_string(bands) + " float32 band" + (bands == 1 ? "" : "s");
-  if (!out || !why.empty()) throw Error("GDAL format '" + format + "' cannot write " + what + ": " + why);
+  if (!why.empty()) throw Error("GDAL format '" + format + "' cannot write " + what + ": " + why);
   if (kept < bands) {
     throw Error("GDAL format '" + format + "' keeps " + std::to_string(kept) + " of " + what +
                 "; choose a format that holds them all (GTiff, COG, HFA, netCDF)");

@@ -58,8 +58,8 @@ int run(const SkymapOptions& o) {
                 "--sky preetham, hosek, or isotropic without --epw");
   refuse_unused(*o.app, "--albedo", o.sky == "hosek", "--sky hosek");
   refuse_unused(*o.app, "--luminous-efficacy", analytic_sun, "--sky preetham, or isotropic without --epw");
-  if (!o.no_preview && !o.preview.empty()) require_extension(o.preview, {".png"}, "--preview");
   refuse_unused(*o.app, "--preview", !o.no_preview, "runs without --no-preview");
+  if (!o.preview.empty()) require_extension(o.preview, {".png"}, "--preview");
   const std::string preview =
       o.no_preview
           ? ""

@@ -49,9 +49,9 @@ Runner setup(CLI::App& app) {
     if (o->kind == "footprints") require_extension(o->output, {".geojson", ".json", ".gpkg", ".shp"}, "the footprints");
     for (const char* name : {"--of", "--co"})
       refuse_unused(app, name, raster, "the raster kinds (city, mountains, canyon, pit, plane)");
-    ThreadLimit limit(o->out.threads);
     refuse_unused(app, "--density", o->kind == "lidar", "lidar");
     refuse_unused(app, "--birds", o->kind == "lidar", "lidar");
+    ThreadLimit limit(o->out.threads);
     check_output_writable(o->output, o->out.overwrite);
     if (raster) check_output_format(o->out.format, 1, o->out.creation_options);
     GeoReference g = local_grid(o->size, o->size, o->cell);

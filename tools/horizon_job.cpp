@@ -86,7 +86,7 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   for (const std::string& path : more_outputs) {
     if (!path.empty()) check_output_writable(path, o.out.overwrite);
   }
-  if (o.out.format == "MEM") throw Error("output format MEM writes no file; choose a file format");
+  check_output_format(o.out.format, 1, o.out.creation_options);  // before the input is read; svf checks its bands
   HorizonJob job;
   job.edge = o.edge == "nodata" ? EdgeMode::nodata : EdgeMode::open;
   std::string method = o.method;

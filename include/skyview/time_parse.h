@@ -24,8 +24,8 @@ struct ParsedTime {
 // Parses `text`. When it carries neither an offset nor a zone, `default_zone` is used (an IANA
 // name, or "UTC"); when that is empty too, throws. A local time that a DST change skips throws;
 // one that occurs twice resolves to the earlier instant (and sets `ambiguous`). Second 60 is
-// accepted only in a leap second: the last second of 30 June or 31 December, UTC. Throws skyview::Error on bad input or
-// years outside kMinSolarYear..kMaxSolarYear.
+// accepted only in a leap second: the last second of 30 June or 31 December, UTC. Throws
+// skyview::Error on bad input or years outside kMinSolarYear..kMaxSolarYear.
 ParsedTime parse_time(const std::string& text, const std::string& default_zone = "");
 
 // "1h", "30m", "30min", "15s", "1d", "90" (seconds), "1.5h"; must be > 0. Throws skyview::Error.
