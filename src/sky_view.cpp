@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -207,24 +208,39 @@ struct Totals {
 // Writes the products of window cell (wc, wr) from its totals over n directions, or leaves them
 // NaN (nodata; --edge nodata where the search circle leaves the raster).
 void write_cell(const Terrain& terrain, const Window& window, int wc, int wr, double radius, EdgeMode edge, int n,
-                const Totals& sums, bool lower, SkyViewProducts& p, unsigned char& leaves) {
+                const Totals& sums, bool lower, ProductSet keep, SkyViewProducts& p, unsigned char& leaves) {
   const int col = window.col0 + wc, row = window.row0 + wr;
   if (!terrain.valid(col, row)) return;
   if (search_circle_leaves_raster(terrain, col, row, radius)) {
     leaves = 1;
     if (edge == EdgeMode::nodata) return;
   }
-  p.svf(wc, wr) = static_cast<float>(1.0 - sums.svf / n);
-  p.sky_visibility(wc, wr) = static_cast<float>(1.0 - sums.visibility / n);
-  p.svf_surface(wc, wr) = static_cast<float>(std::clamp(sums.surface, 0.0, 1.0));
-  p.openness_positive(wc, wr) = static_cast<float>(sums.openness / n);
-  if (lower) p.openness_negative(wc, wr) = static_cast<float>(sums.lowest / n);
+  if (keep.has(Product::svf)) p.svf(wc, wr) = static_cast<float>(1.0 - sums.svf / n);
+  if (keep.has(Product::sky_visibility)) p.sky_visibility(wc, wr) = static_cast<float>(1.0 - sums.visibility / n);
+  if (keep.has(Product::svf_surface)) p.svf_surface(wc, wr) = static_cast<float>(std::clamp(sums.surface, 0.0, 1.0));
+  if (keep.has(Product::openness_positive)) p.openness_positive(wc, wr) = static_cast<float>(sums.openness / n);
+  if (lower && keep.has(Product::openness_negative)) p.openness_negative(wc, wr) = static_cast<float>(sums.lowest / n);
 }
 
-SkyViewProducts empty_products(const Window& window) {
+// Each product's sum per cell of a chunk, in the order of Totals (SkyViewSums keeps its running
+// sums in this order).
+struct ProductSum {
+  Product product;
+  double (SkySums::*chunk)[kChunk];
+};
+constexpr ProductSum kSums[] = {
+    {Product::svf, &SkySums::svf},
+    {Product::sky_visibility, &SkySums::visibility},
+    {Product::svf_surface, &SkySums::surface},
+    {Product::openness_positive, &SkySums::openness},
+    {Product::openness_negative, &SkySums::lowest},
+};
+
+SkyViewProducts empty_products(const Window& window, ProductSet keep) {
   SkyViewProducts p;
-  p.svf = p.svf_surface = p.sky_visibility = p.openness_positive = p.openness_negative =
-      Grid<float>(window.cols, window.rows, kNaN);
+  for (const auto& [product, grid] : kProductGrids) {
+    if (keep.has(product)) p.*grid = Grid<float>(window.cols, window.rows, kNaN);
+  }
   return p;
 }
 
@@ -232,7 +248,7 @@ SkyViewProducts empty_products(const Window& window) {
 
 SkyViewProducts sky_view_products(const Terrain& terrain, const Window& window, const HorizonField& field,
                                   double radius, EdgeMode edge) {
-  SkyViewProducts p = empty_products(window);
+  SkyViewProducts p = empty_products(window, ProductSet::all());
   const int w = window.cols, h = window.rows, n = field.directions;
   const bool lower = !field.lower.empty();
   std::vector<unsigned char> leaves(static_cast<std::size_t>(w) * h, 0);
@@ -255,7 +271,8 @@ SkyViewProducts sky_view_products(const Terrain& terrain, const Window& window, 
                  count);
       for (int i = 0; i < count; ++i) {
         const Totals totals{sums->svf[i], sums->visibility[i], sums->surface[i], sums->openness[i], sums->lowest[i]};
-        write_cell(terrain, window, c0 + i, wr, radius, edge, n, totals, lower, p, leaves[first + i]);
+        write_cell(terrain, window, c0 + i, wr, radius, edge, n, totals, lower, ProductSet::all(), p,
+                   leaves[first + i]);
       }
     }
   });
@@ -263,44 +280,61 @@ SkyViewProducts sky_view_products(const Terrain& terrain, const Window& window, 
   return p;
 }
 
-// What SkyViewSums keeps per cell of the window: the tilt, the sectors' offset from the aspect
-// (set with the first direction, which brings the cell's rotation) and the sums so far.
+// What SkyViewSums keeps per cell of the window: a running sum for each kept product (the others'
+// vectors stay empty) and, for svf_surface, the tilt and the sectors' offset from the aspect (set
+// with the first direction, which brings the cell's rotation).
 struct SkyViewSums::State {
   const Terrain& terrain;
   Window window;
   Sectors sectors;     // sectors.n: the directions
+  ProductSet keep;     // the products summed
+  std::size_t cells;   // of the window
   int next = 0;        // the next direction to add
   bool lower = false;  // lowest angles were added
   std::vector<Tilt> tilt;
   std::vector<float> cos_offset, sin_offset;
-  std::vector<double> svf, visibility, surface, openness, lowest;
+  std::vector<double> sums[std::size(kSums)];  // kSums' order
 
-  State(const Terrain& t, const Window& w, int n) : terrain(t), window(w), sectors(n) {
-    const std::size_t cells = static_cast<std::size_t>(w.cols) * w.rows;
+  State(const Terrain& t, const Window& w, int n, ProductSet k)
+      : terrain(t), window(w), sectors(n), keep(k), cells(static_cast<std::size_t>(w.cols) * w.rows) {
+    for (std::size_t s = 0; s < std::size(kSums); ++s) {
+      if (keep.has(kSums[s].product)) sums[s].assign(cells, 0.0);
+    }
+    if (!keep.has(Product::svf_surface)) return;
     tilt.resize(cells);
     cos_offset.assign(cells, 0.0f), sin_offset.assign(cells, 0.0f);
-    for (auto* v : {&svf, &visibility, &surface, &openness, &lowest}) v->assign(cells, 0.0);
     tbb::parallel_for(0, w.rows, [&](int wr) {
       for (int wc = 0; wc < w.cols; ++wc)
         tilt[static_cast<std::size_t>(wr) * w.cols + wc] = tilt_at(t, w.col0 + wc, w.row0 + wr);
     });
   }
 
-  Totals totals(std::size_t c) const { return {svf[c], visibility[c], surface[c], openness[c], lowest[c]}; }
-  // Window cell c's sums to and from chunk cell i.
+  // kSums' order is Totals' order.
+  double sum(std::size_t s, std::size_t c) const { return sums[s].empty() ? 0.0 : sums[s][c]; }
+  Totals totals(std::size_t c) const { return {sum(0, c), sum(1, c), sum(2, c), sum(3, c), sum(4, c)}; }
+  // Window cell c's sums to and from chunk cell i (a product not kept sums from zero, unread).
   void load(std::size_t c, SkySums& chunk, int i) const {
-    chunk.svf[i] = svf[c], chunk.visibility[i] = visibility[c], chunk.surface[i] = surface[c];
-    chunk.openness[i] = openness[c], chunk.lowest[i] = lowest[c];
+    chunk.clear(i);
+    for (std::size_t s = 0; s < std::size(kSums); ++s) {
+      if (!sums[s].empty()) (chunk.*kSums[s].chunk)[i] = sums[s][c];
+    }
   }
   void store(std::size_t c, const SkySums& chunk, int i) {
-    svf[c] = chunk.svf[i], visibility[c] = chunk.visibility[i], surface[c] = chunk.surface[i];
-    openness[c] = chunk.openness[i], lowest[c] = chunk.lowest[i];
+    for (std::size_t s = 0; s < std::size(kSums); ++s) {
+      if (!sums[s].empty()) sums[s][c] = (chunk.*kSums[s].chunk)[i];
+    }
   }
 };
-static_assert(sizeof(Tilt) + 2 * sizeof(float) + 5 * sizeof(double) == SkyViewSums::kBytesPerCell);
 
-SkyViewSums::SkyViewSums(const Terrain& terrain, const Window& window, int directions)
-    : s_(std::make_unique<State>(terrain, window, directions)) {}
+int SkyViewSums::bytes_per_cell(ProductSet keep) {
+  int bytes = 0;
+  for (const ProductSum& sum : kSums) bytes += keep.has(sum.product) ? static_cast<int>(sizeof(double)) : 0;
+  if (keep.has(Product::svf_surface)) bytes += static_cast<int>(sizeof(Tilt) + 2 * sizeof(float));
+  return bytes;
+}
+
+SkyViewSums::SkyViewSums(const Terrain& terrain, const Window& window, int directions, ProductSet keep)
+    : s_(std::make_unique<State>(terrain, window, directions, keep)) {}
 
 SkyViewSums::~SkyViewSums() = default;
 
@@ -312,7 +346,8 @@ void SkyViewSums::add(int first, int count, const float* upper, const float* low
   if (first == 0) st.lower = lower != nullptr;
   if (st.lower != (lower != nullptr))
     throw Error("sky-view sums: lowest angles for some directions only (internal error)");
-  const std::size_t cells = st.svf.size();
+  const std::size_t cells = st.cells;
+  const bool tilted = st.keep.has(Product::svf_surface);
   // Chunks of cells, each summed over the batch's planes with its sums in the first-level cache.
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells, kChunk), [&](const tbb::blocked_range<std::size_t>& r) {
     auto chunk = std::make_unique<SkySums>();
@@ -320,10 +355,14 @@ void SkyViewSums::add(int first, int count, const float* upper, const float* low
       const int n = static_cast<int>(std::min<std::size_t>(kChunk, r.end() - c0));
       for (int i = 0; i < n; ++i) {
         const std::size_t c = c0 + i;
-        const Tilt& tilt = st.tilt[c];
-        if (first == 0)
-          sector_offset(rotation.empty() ? 0.0 : rotation[c], tilt.aspect, st.cos_offset[c], st.sin_offset[c]);
-        chunk->set_tilt(i, tilt.cb, tilt.sb, tilt.tb, st.cos_offset[c], st.sin_offset[c]);
+        if (tilted) {
+          const Tilt& tilt = st.tilt[c];
+          if (first == 0)
+            sector_offset(rotation.empty() ? 0.0 : rotation[c], tilt.aspect, st.cos_offset[c], st.sin_offset[c]);
+          chunk->set_tilt(i, tilt.cb, tilt.sb, tilt.tb, st.cos_offset[c], st.sin_offset[c]);
+        } else {
+          chunk->set_tilt(i, 1.0, 0.0, 0.0, 1.0, 0.0);  // a level surface: its share is unread
+        }
         st.load(c, *chunk, i);
       }
       add_planes(*chunk, st.sectors, first, count, upper, lower, cells, c0, n);
@@ -337,12 +376,12 @@ SkyViewProducts SkyViewSums::finish(double radius, EdgeMode edge) const {
   const State& st = *s_;
   if (st.next != st.sectors.n) throw Error("sky-view sums: not every direction was added (internal error)");
   const Window& window = st.window;
-  SkyViewProducts p = empty_products(window);
-  std::vector<unsigned char> leaves(st.svf.size(), 0);
+  SkyViewProducts p = empty_products(window, st.keep);
+  std::vector<unsigned char> leaves(st.cells, 0);
   tbb::parallel_for(0, window.rows, [&](int wr) {
     for (int wc = 0; wc < window.cols; ++wc) {
       const std::size_t c = static_cast<std::size_t>(wr) * window.cols + wc;
-      write_cell(st.terrain, window, wc, wr, radius, edge, st.sectors.n, st.totals(c), st.lower, p, leaves[c]);
+      write_cell(st.terrain, window, wc, wr, radius, edge, st.sectors.n, st.totals(c), st.lower, st.keep, p, leaves[c]);
     }
   });
   for (unsigned char l : leaves) p.edge_cells += l;

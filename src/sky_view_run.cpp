@@ -1,5 +1,5 @@
 // Sky-view products from a method without keeping every direction's horizons: they cost 4 bytes
-// per cell and direction (8 with the lowest angles that skyview svf needs), 2 GB for 64 directions
+// per cell and direction (8 with the lowest angles that openness_negative needs), 2 GB for 64 directions
 // over 2000 x 2000 cells, where the products themselves are 20 bytes per cell.
 #include <algorithm>
 #include <cstring>
@@ -17,7 +17,7 @@ void copy_rows(const Grid<float>& from, Grid<float>& to, int r0) {
 // Methods that find all of a cell's directions together go by blocks of whole rows, each turned
 // into products before the next (compute_by_row_blocks).
 SkyViewProducts by_row_blocks(const HorizonEngine& engine, const Terrain& terrain, const Window& window, EdgeMode edge,
-                              ProgressCounter& progress, std::size_t horizon_bytes) {
+                              ProgressCounter& progress, std::size_t horizon_bytes, ProductSet keep) {
   SkyViewProducts out;
   compute_by_row_blocks(
       engine, terrain, window, progress, horizon_bytes, 1, [&](const Window& block, HorizonField& field) {
@@ -31,17 +31,13 @@ SkyViewProducts by_row_blocks(const HorizonEngine& engine, const Terrain& terrai
           return;
         }
         const int r0 = block.row0 - window.row0;
-        if (r0 == 0) {
-          out.svf = out.svf_surface = out.sky_visibility = out.openness_positive = out.openness_negative =
-              Grid<float>(window.cols, window.rows);
-          if (!field.svf_direct.empty())
-            out.svf_montecarlo = out.svf_montecarlo_stderr = Grid<float>(window.cols, window.rows);
+        for (const auto& [product, grid] : kProductGrids) {
+          if (!keep.has(product)) continue;
+          if (r0 == 0) out.*grid = Grid<float>(window.cols, window.rows);
+          copy_rows(part.*grid, out.*grid, r0);
         }
-        copy_rows(part.svf, out.svf, r0);
-        copy_rows(part.svf_surface, out.svf_surface, r0);
-        copy_rows(part.sky_visibility, out.sky_visibility, r0);
-        copy_rows(part.openness_positive, out.openness_positive, r0);
-        copy_rows(part.openness_negative, out.openness_negative, r0);
+        if (r0 == 0 && !field.svf_direct.empty())
+          out.svf_montecarlo = out.svf_montecarlo_stderr = Grid<float>(window.cols, window.rows);
         out.edge_cells += part.edge_cells;
         if (!field.svf_direct.empty()) {
           std::memcpy(out.svf_montecarlo.data() + out.svf_montecarlo.index(0, r0), field.svf_direct.data(),
@@ -56,19 +52,20 @@ SkyViewProducts by_row_blocks(const HorizonEngine& engine, const Terrain& terrai
 }  // namespace
 
 SkyViewProducts compute_sky_view(const HorizonEngine& engine, const Terrain& terrain, const Window& window,
-                                 EdgeMode edge, ProgressCounter& progress, std::size_t horizon_bytes) {
+                                 EdgeMode edge, ProgressCounter& progress, std::size_t horizon_bytes, ProductSet keep) {
   const int n = engine.params().directions;
-  if (!engine.streams_directions()) return by_row_blocks(engine, terrain, window, edge, progress, horizon_bytes);
+  if (!engine.streams_directions()) return by_row_blocks(engine, terrain, window, edge, progress, horizon_bytes, keep);
   // A sweep walks the whole buffer for every direction whatever the window, so it never goes by
-  // blocks. Its directions cost 8 bytes per cell each, the running sums SkyViewSums::kBytesPerCell:
-  // from twice that on (16 directions) they are summed as they arrive, for about 10% more compute
-  // (bench_horizon) and no more wall time.
+  // blocks. Its directions cost 4 bytes per cell each (8 with the lowest angles); once that is
+  // twice the running sums (16 directions for all five products), they are summed as they arrive,
+  // for about 10% more compute (bench_horizon) and no more wall time.
   HorizonField field;
-  if (8.0 * n < 2.0 * SkyViewSums::kBytesPerCell) {
+  const double direction_bytes = engine.params().lower ? 8.0 : 4.0;
+  if (direction_bytes * n < 2.0 * SkyViewSums::bytes_per_cell(keep)) {
     engine.compute(terrain, window, field, progress);
     return sky_view_products(terrain, window, field, engine.radius(), edge);
   }
-  SkyViewSums sums(terrain, window, n);
+  SkyViewSums sums(terrain, window, n, keep);
   const DirectionBatchSink take = [&](int first, int count, const float* upper, const float* lower) {
     sums.add(first, count, upper, lower, field.rotation);
   };

@@ -15,18 +15,16 @@ struct ProductBand {
   const char* name;
   const char* unit;
   const char* definition;
-  Grid<float> SkyViewProducts::*grid;
+  Product product;
 };
 constexpr ProductBand kProducts[] = {
-    {"svf", "1", "1 - mean sin^2(max(h,0)); cosine-weighted, horizontal", &SkyViewProducts::svf},
+    {"svf", "1", "1 - mean sin^2(max(h,0)); cosine-weighted, horizontal", Product::svf},
     {"svf_surface", "1", "view factor of the tilted cell surface (Horn normal) to the unobstructed sky",
-     &SkyViewProducts::svf_surface},
-    {"sky_visibility", "1", "1 - mean sin(max(h,0)); solid-angle fraction of the hemisphere",
-     &SkyViewProducts::sky_visibility},
-    {"openness_positive", "degree", "mean zenith angle of the horizon (Yokoyama 2002)",
-     &SkyViewProducts::openness_positive},
+     Product::svf_surface},
+    {"sky_visibility", "1", "1 - mean sin(max(h,0)); solid-angle fraction of the hemisphere", Product::sky_visibility},
+    {"openness_positive", "degree", "mean zenith angle of the horizon (Yokoyama 2002)", Product::openness_positive},
     {"openness_negative", "degree", "mean nadir angle of the lowest terrain (Yokoyama 2002)",
-     &SkyViewProducts::openness_negative},
+     Product::openness_negative},
 };
 
 std::vector<const ProductBand*> chosen_products(const std::string& list) {
@@ -75,19 +73,22 @@ Runner setup(CLI::App& app) {
     ThreadLimit limit(o->out.threads);
     HorizonJobOptions opts = *o;
     // Negative openness is the only product that needs the lowest angles: a second walk.
-    opts.params.lower = std::any_of(chosen.begin(), chosen.end(), [](const ProductBand* p) {
-      return p->grid == &SkyViewProducts::openness_negative;
-    });
+    opts.params.lower = std::any_of(chosen.begin(), chosen.end(),
+                                    [](const ProductBand* p) { return p->product == Product::openness_negative; });
     HorizonJob job = prepare_horizon_job(opts, "svf", {*preview});
     if (!preview->empty()) require_extension(*preview, {".png"}, "--preview");
     const bool monte_carlo = job.engine->name() == "raycast" && job.engine->params().rays > 0;
     check_output_format(o->out.format, static_cast<int>(chosen.size()) + (monte_carlo ? 2 : 0),
                         o->out.creation_options);
     // Horizons are held a part at a time (compute_sky_view), so memory does not grow with the
-    // number of directions.
+    // number of directions; only the products written (and svf for the preview) are summed.
+    ProductSet keep = ProductSet::none();
+    for (const ProductBand* c : chosen) keep.add(c->product);
+    if (!preview->empty()) keep.add(Product::svf);
     SkyViewProducts p;
     with_progress(job, [&](ProgressCounter& progress) {
-      p = compute_sky_view(*job.engine, job.terrain, Window::whole(job.terrain), job.edge, progress);
+      p = compute_sky_view(*job.engine, job.terrain, Window::whole(job.terrain), job.edge, progress, kHorizonBlockBytes,
+                           keep);
     });
     job.metadata["EDGE_CELLS"] = std::to_string(p.edge_cells);
     if (p.edge_cells > 0) {
@@ -103,7 +104,7 @@ Runner setup(CLI::App& app) {
     const int w = job.terrain.width(), h = job.terrain.height();
     std::vector<OutputBand> bands;
     for (const ProductBand* c : chosen)
-      bands.push_back({c->name, c->unit, (p.*(c->grid)).data(), {{"DEFINITION", c->definition}}});
+      bands.push_back({c->name, c->unit, (p.*product_grid(c->product)).data(), {{"DEFINITION", c->definition}}});
     if (!p.svf_montecarlo.values().empty()) {
       bands.push_back({"svf_montecarlo",
                        "1",

@@ -38,14 +38,58 @@ struct SkyViewProducts {
 // True where the ground circle of `radius` metres around the cell leaves the full raster.
 bool search_circle_leaves_raster(const Terrain& terrain, int col, int row, double radius);
 
+// The products a run keeps. Grids of the others may be left empty, and SkyViewSums holds no sums
+// for them: a run that writes svf alone keeps 8 bytes per cell where all five keep 64.
+enum class Product : unsigned {
+  svf = 1,
+  svf_surface = 2,
+  sky_visibility = 4,
+  openness_positive = 8,
+  openness_negative = 16
+};
+// Each product's grid in SkyViewProducts.
+struct ProductGrid {
+  Product product;
+  Grid<float> SkyViewProducts::*grid;
+};
+inline constexpr ProductGrid kProductGrids[] = {{Product::svf, &SkyViewProducts::svf},
+                                                {Product::svf_surface, &SkyViewProducts::svf_surface},
+                                                {Product::sky_visibility, &SkyViewProducts::sky_visibility},
+                                                {Product::openness_positive, &SkyViewProducts::openness_positive},
+                                                {Product::openness_negative, &SkyViewProducts::openness_negative}};
+
+inline Grid<float> SkyViewProducts::*product_grid(Product p) {
+  for (const ProductGrid& g : kProductGrids) {
+    if (g.product == p) return g.grid;
+  }
+  return nullptr;
+}
+
+class ProductSet {
+ public:
+  static ProductSet all() { return ProductSet(31); }
+  static ProductSet none() { return ProductSet(0); }
+  bool has(Product p) const { return (bits_ & static_cast<unsigned>(p)) != 0; }
+  ProductSet& add(Product p) {
+    bits_ |= static_cast<unsigned>(p);
+    return *this;
+  }
+
+ private:
+  explicit ProductSet(unsigned bits) : bits_(bits) {}
+  unsigned bits_;
+};
+
 // The products summed direction by direction, so that a method that finds one direction at a time
-// (HorizonEngine::compute_directions) need not keep every direction's horizons: per cell, the
-// surface's tilt and five running sums, about 64 bytes, whatever the number of directions.
+// (HorizonEngine::compute_directions) need not keep every direction's horizons: per cell, a running
+// sum (8 bytes) for each product kept, and for svf_surface the surface's tilt (24 bytes more),
+// whatever the number of directions.
 class SkyViewSums {
  public:
-  static constexpr int kBytesPerCell = 64;  // the tilt and the sums: memory per cell of the window
+  // Memory per cell of the window: 64 bytes for all five products.
+  static int bytes_per_cell(ProductSet keep);
 
-  SkyViewSums(const Terrain& terrain, const Window& window, int directions);
+  SkyViewSums(const Terrain& terrain, const Window& window, int directions, ProductSet keep = ProductSet::all());
   ~SkyViewSums();
   SkyViewSums(const SkyViewSums&) = delete;
   SkyViewSums& operator=(const SkyViewSums&) = delete;
@@ -53,7 +97,8 @@ class SkyViewSums {
   // angles (window-sized, row-major, one after another), their lowest angles likewise (or null,
   // for every batch), and each cell's rotation of the direction set (radians; empty: none).
   void add(int first, int count, const float* upper, const float* lower, const std::vector<float>& rotation);
-  // Openness_negative is NaN unless lowest angles were added.
+  // The kept products (the others' grids empty); openness_negative is NaN unless lowest angles
+  // were added.
   SkyViewProducts finish(double radius, EdgeMode edge) const;
 
  private:
@@ -68,12 +113,12 @@ SkyViewProducts sky_view_products(const Terrain& terrain, const Window& window, 
 
 // The products of `window`'s cells straight from a method, so that memory does not grow with the
 // number of directions: a method that finds one direction at a time (the sweep) hands them over as
-// they are done, summed by SkyViewSums from 16 directions on (below that, its whole field takes
-// less than the sums would); the others compute the window in blocks of rows holding about
-// `horizon_bytes` of horizons each. The same bits as sky_view_products over the whole field
-// (tested). Progress advances by the window's cells.
+// they are done, summed by SkyViewSums once its whole field would take twice what the sums take;
+// the others compute the window in blocks of rows holding about `horizon_bytes` of horizons each.
+// The products in `keep` are the same bits as sky_view_products over the whole field (tested);
+// the others' grids may be empty. Progress advances by the window's cells.
 SkyViewProducts compute_sky_view(const HorizonEngine& engine, const Terrain& terrain, const Window& window,
                                  EdgeMode edge, ProgressCounter& progress,
-                                 std::size_t horizon_bytes = kHorizonBlockBytes);
+                                 std::size_t horizon_bytes = kHorizonBlockBytes, ProductSet keep = ProductSet::all());
 
 }  // namespace skyview

@@ -472,6 +472,51 @@ TEST(ComputeSkyView, PartsGiveTheProductsOfTheWholeField) {
   }
 }
 
+// A run that keeps some products sums only those (svf alone: 8 bytes per cell where all five take
+// 64) and gives them bit for bit; the others' grids are left empty. Streamed by the sweep, and by
+// blocks of rows for the march.
+TEST(ComputeSkyView, KeepsOnlyTheProductsAskedFor) {
+  EXPECT_EQ(SkyViewSums::bytes_per_cell(ProductSet::all()), 64);
+  EXPECT_EQ(SkyViewSums::bytes_per_cell(ProductSet::none().add(Product::svf)), 8);
+  EXPECT_EQ(SkyViewSums::bytes_per_cell(ProductSet::none().add(Product::svf_surface)), 32);
+  Terrain t = small_city_with_nodata();
+  punch_nodata_block(t);
+  const Window window{7, 5, 131, 103};
+  for (const char* method : {"sweep", "march"}) {
+    HorizonParams p = sweep_params(24, "off", 8);
+    if (std::string(method) == "march") p.radius = 25.0;
+    const auto engine = make_horizon_engine(method, p);
+    const EdgeMode edge = std::isfinite(engine->radius()) ? EdgeMode::nodata : EdgeMode::open;
+    const SkyViewProducts expected = sky_view_products(t, window, run(t, window, method, p), engine->radius(), edge);
+    for (const ProductSet keep : {ProductSet::none().add(Product::svf),
+                                  ProductSet::none().add(Product::svf_surface).add(Product::openness_negative)}) {
+      ProgressCounter progress;
+      progress.set_total(static_cast<std::uint64_t>(window.cells()));
+      const std::size_t one_row = sizeof(float) * window.cols * 2 * p.directions;
+      const SkyViewProducts got = compute_sky_view(*engine, t, window, edge, progress, one_row * 10, keep);
+      for (const auto& [product, grid] : kProductGrids) {
+        const Grid<float>& g = got.*grid;
+        if (!keep.has(product)) {
+          EXPECT_EQ(g.size(), 0u) << method << ": a product not asked for";
+          continue;
+        }
+        const Grid<float>& e = expected.*grid;
+        ASSERT_EQ(g.size(), e.size()) << method;
+        std::size_t finite = 0;
+        for (std::size_t i = 0; i < g.size(); ++i) {
+          if (std::isnan(e.values()[i])) {
+            ASSERT_TRUE(std::isnan(g.values()[i])) << method << " at " << i;
+            continue;
+          }
+          ASSERT_EQ(g.values()[i], e.values()[i]) << method << " at " << i;
+          ++finite;
+        }
+        EXPECT_GT(finite, window.cells() / 2) << method;
+      }
+    }
+  }
+}
+
 // Blocks of rows tile the window in order, in multiples of the rows asked for (the last one
 // shorter), and hold the whole window's horizons bit for bit.
 TEST(ComputeByRowBlocks, BlocksTileTheWindowAndHoldItsHorizons) {
