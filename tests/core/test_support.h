@@ -2,10 +2,10 @@
 // Helpers shared by the core tests: analytic terrains, one-cell horizon runs, temp folders.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cmath>
 #include <filesystem>
 #include <string>
-#include <unistd.h>
 
 #include "skyview/horizon_engine.h"
 #include "skyview/raster_io.h"
@@ -45,8 +45,8 @@ inline std::string temp_dir(const std::string& name) {
   for (char& ch : test) {
     if (ch == '/') ch = '_';
   }
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("skyview-test-" + name + "-" + test + "-" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("skyview-test-" + name + "-" + test + "-" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir.string();
