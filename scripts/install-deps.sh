@@ -3,7 +3,7 @@
 set -euo pipefail
 packages=(
   cmake g++ make pkg-config
-  libgdal-dev gdal-bin libgeographiclib-dev libopencv-dev libpcl-dev libembree-dev libtbb-dev libgeos-dev
+  libgdal-dev gdal-bin libnetcdf-dev libgeographiclib-dev libopencv-dev libpcl-dev libembree-dev libtbb-dev libgeos-dev
   libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev
   clang clang-format libclang-rt-14-dev  # libFuzzer and sanitizer runtimes (only recommended by clang)
   python3  # scripts/fuzz.sh writes its seed LAS files with it

@@ -17,6 +17,7 @@
 #include <mutex>
 #include <sstream>
 
+#include "netcdf_names.h"
 #include "skyview/error.h"
 
 namespace skyview {
@@ -467,6 +468,7 @@ struct BandWriter::State {
   DatasetPtr ds;
   bool direct = false;  // ds is the output under `tmp`, not a memory dataset
   std::vector<float> buffer;
+  std::vector<std::string> names;  // the bands' descriptions
 };
 
 BandWriter::BandWriter(const std::string& path, int width, int height, int bands, const GeoReference& georef,
@@ -482,6 +484,7 @@ BandWriter::BandWriter(const std::string& path, int width, int height, int bands
   check_output_format(options.format, bands, options.creation_options);
   s.driver = output_driver(options.format);
   s.direct = CSLFetchBoolean(s.driver->GetMetadata(), GDAL_DCAP_CREATE, FALSE);
+  s.names.resize(static_cast<std::size_t>(bands));
   if (s.direct) {
     const CPLStringList opts = creation_options(options.format, GDT_Float32, options.creation_options);
     s.tmp = temporary_name(path);
@@ -531,6 +534,7 @@ void BandWriter::describe(int index, const OutputBand& src) {
   GDALRasterBand* band = band_of(s_->ds.get(), index, s_->path);
   band->SetNoDataValue(s_->options.nodata);
   band->SetDescription(src.description.c_str());
+  s_->names[static_cast<std::size_t>(index)] = src.description;
   band->SetUnitType(src.unit.c_str());
   for (const auto& [k, v] : src.metadata) band->SetMetadataItem(k.c_str(), v.c_str());
 }
@@ -550,7 +554,14 @@ void BandWriter::finish() {
     s.ds.reset();
     return;
   }
-  const std::string why = close_written(s.ds.release());
+  std::string why = close_written(s.ds.release());
+  if (why.empty() && EQUAL(s.driver->GetDescription(), "netCDF")) {
+    try {
+      detail::name_netcdf_variables(s.tmp, s.names);
+    } catch (const Error& e) {
+      why = e.what();
+    }
+  }
   if (!why.empty()) {
     if (path_exists(s.tmp)) s.driver->Delete(s.tmp.c_str());
     throw Error("cannot write '" + s.path + "': " + naming_output(why, s.tmp, s.path));

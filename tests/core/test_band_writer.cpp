@@ -99,6 +99,36 @@ TEST_P(BandWriterFormats, BandsInAnyOrderAppearWhenFinished) {
 
 INSTANTIATE_TEST_SUITE_P(Formats, BandWriterFormats, ::testing::Values("GTiff", "COG"));
 
+// GDAL 3.6 names netCDF variables Band1, Band2 ... with long_name "GDAL Band Number N": the
+// writer renames them after the bands (xarray and CDO read variables by name), keeps GDAL's name
+// where the band's would clash with a variable already there (x, the coordinate), and makes a
+// description that netCDF would refuse into a name it takes.
+TEST_F(BandWriterTest, NetcdfVariablesAreNamedAfterTheBands) {
+  wo.format = "netCDF";
+  const std::string nc = scratch.dir + "/out.nc";
+  const char* names[] = {"svf", "horizon_azimuth_11.25", "x", "3d nodes/m"};
+  {
+    BandWriter out(nc, kW, kH, 4, georef(), wo);
+    for (int b = 0; b < 4; ++b) {
+      const std::vector<float> v = band_values(b);
+      out.write(b, {names[b], "1", v.data(), {}});
+    }
+    out.finish();
+  }
+  EXPECT_EQ(files_in(scratch.dir), 1u) << "no temporary file left";
+  for (const auto& [b, variable] :
+       {std::pair{0, "svf"}, {1, "horizon_azimuth_11.25"}, {2, "Band3"}, {3, "_3d_nodes_m"}}) {
+    const std::string sub = "NETCDF:\"" + nc + "\":" + variable;
+    GDALDatasetUniquePtr ds(GDALDataset::Open(sub.c_str(), GDAL_OF_RASTER));
+    ASSERT_TRUE(ds) << sub;
+    EXPECT_STREQ(ds->GetRasterBand(1)->GetMetadataItem("long_name"), names[b]) << sub;
+    double gt[6];
+    ASSERT_EQ(ds->GetGeoTransform(gt), CE_None);
+    EXPECT_EQ(gt[0], 500000.0);
+    expect_band(*ds, 0, band_values(b), wo.nodata);
+  }
+}
+
 // A band written in parts of rows (what `skyview horizon` does by blocks) equals the band whole.
 TEST_F(BandWriterTest, BandsInPartsOfRows) {
   const std::vector<float> v = band_values(1);
