@@ -2,7 +2,6 @@
 // Helpers shared by the core tests: analytic terrains, one-cell horizon runs, temp folders.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -11,6 +10,7 @@
 #include "skyview/raster_io.h"
 #include "skyview/sky_view.h"
 #include "skyview/synthetic.h"
+#include "temp_dir.h"
 
 #include <cpl_conv.h>
 #include <ogr_spatialref.h>
@@ -36,20 +36,6 @@ inline CellResult run_cell(const Terrain& t, int col, int row, const std::string
   const SkyViewProducts out = sky_view_products(t, w, field, engine->radius(), EdgeMode::open);
   return {out.svf(0, 0), out.svf_surface(0, 0), out.sky_visibility(0, 0), out.openness_positive(0, 0),
           out.openness_negative(0, 0)};
-}
-
-// A fresh folder per test and process: ctest runs tests in parallel.
-inline std::string temp_dir(const std::string& name) {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  std::string test = info ? std::string(info->test_suite_name()) + "." + info->name() : "none";
-  for (char& ch : test) {
-    if (ch == '/') ch = '_';
-  }
-  const auto dir =
-      std::filesystem::temp_directory_path() / ("skyview-test-" + name + "-" + test + "-" + std::to_string(::getpid()));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir.string();
 }
 
 inline std::string wkt_of(const char* user_crs) {

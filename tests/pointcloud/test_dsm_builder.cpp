@@ -22,12 +22,7 @@ using namespace skyview;
 
 namespace {
 
-std::string dir_for(const std::string& name) {
-  const auto d = std::filesystem::temp_directory_path() / ("skyview-dsm-" + name + "-" + std::to_string(::getpid()));
-  std::filesystem::remove_all(d);
-  std::filesystem::create_directories(d);
-  return d.string();
-}
+std::string dir_for(const std::string& name) { return skyview::test::temp_dir("dsm-" + name); }
 
 using skyview::test::wkt_of;
 constexpr auto wkt = wkt_of;

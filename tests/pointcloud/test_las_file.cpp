@@ -8,6 +8,7 @@
 
 #include "skyview/error.h"
 #include "skyview/las_file.h"
+#include "temp_dir.h"
 
 using namespace skyview;
 
@@ -101,8 +102,7 @@ std::vector<LasPoint> synthetic_points() {
 }
 
 TEST(LasFile, EveryPointFormatAndVersionRoundTrips) {
-  const auto dir = std::filesystem::temp_directory_path() / "skyview-las";
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path dir = skyview::test::temp_dir("las");
   const auto pts = synthetic_points();
   for (int format = 0; format <= 10; ++format) {
     for (int minor : {2, 4}) {
@@ -130,8 +130,7 @@ TEST(LasFile, EveryPointFormatAndVersionRoundTrips) {
 }
 
 TEST(LasFile, ScaleAndOffsetExtremes) {
-  const auto dir = std::filesystem::temp_directory_path() / "skyview-las";
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path dir = skyview::test::temp_dir("las");
   std::vector<LasPoint> pts = {{-1.0e6, 2.0e7, -420.0005, 0, 1, 1, 2}, {1.0e6, -2.0e7, 8848.123, 0, 1, 1, 2}};
   LasWriteOptions o;
   o.scale[0] = o.scale[1] = 0.01;
@@ -148,8 +147,7 @@ TEST(LasFile, ScaleAndOffsetExtremes) {
 }
 
 TEST(LasFile, TruncatedAndCorruptFilesGiveClearErrors) {
-  const auto dir = std::filesystem::temp_directory_path() / "skyview-las";
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path dir = skyview::test::temp_dir("las");
   const std::string path = (dir / "good.las").string();
   LasWriteOptions o;
   o.offset[0] = 500000;

@@ -10,6 +10,7 @@
 #include "skyview/civil_time.h"
 #include "skyview/epw.h"
 #include "skyview/error.h"
+#include "temp_dir.h"
 
 namespace skyview {
 namespace {
@@ -65,8 +66,7 @@ TEST(Epw, ByteOrderMarkAndImpossibleIrradiance) {
   const std::size_t end = text.find(',', field);
   const double before = std::stod(text.substr(field, end - field));
   text.replace(field, end - field, "5000");
-  const auto dir = std::filesystem::temp_directory_path() / "skyview_epw_bom";
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path dir = skyview::test::temp_dir("epw-bom");
   const std::string edited = (dir / "bom.epw").string();
   std::ofstream(edited, std::ios::binary) << "\xEF\xBB\xBF" << text;
   const EpwFile f = read_epw(edited);
@@ -83,8 +83,7 @@ TEST(Epw, RepeatedHoursAndSubHourlyDataAreRefused) {
   SKYVIEW_REQUIRE_SHARED(path, "weather/chicago.epw");
   std::ifstream in(path, std::ios::binary);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const auto dir = std::filesystem::temp_directory_path() / "skyview_epw_repeat";
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path dir = skyview::test::temp_dir("epw-repeat");
   auto refused = [&](const std::string& edited_text, const std::string& fragment) {
     const std::string edited = (dir / "edited.epw").string();
     std::ofstream(edited, std::ios::binary) << edited_text;
@@ -110,8 +109,7 @@ TEST(Epw, RepeatedHoursAndSubHourlyDataAreRefused) {
 }
 
 TEST(Epw, BadInputIsOneLineError) {
-  const auto dir = std::filesystem::temp_directory_path() / "skyview_epw_test";
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path dir = skyview::test::temp_dir("epw-test");
   const std::string bad = (dir / "bad.epw").string();
   {
     std::ofstream out(bad);

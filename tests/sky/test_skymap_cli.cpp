@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "sky_test_support.h"
+#include "temp_dir.h"
 
 namespace {
 
@@ -30,9 +31,7 @@ Result run(const std::string& args) {
 }
 
 TEST(SkymapCli, WritesBandsAndPreview) {
-  const auto dir = std::filesystem::temp_directory_path() / "skyview_skymap_cli";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path dir = skyview::test::temp_dir("skymap-cli");
   const std::string out = (dir / "map.tif").string();
   const Result r = run(out + " --lat 45 --lon 7 --from 2024-06-21T00:00Z --to 2024-06-22T00:00Z --size 64 -q");
   EXPECT_EQ(r.code, 0) << r.output;
@@ -67,9 +66,7 @@ TEST(SkymapCli, OptionsTheSkyDoesNotUseAreRefused) {
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
   }
   if (epw.empty()) GTEST_SKIP() << "../shared/data/weather/chicago.epw not found";
-  const auto dir = std::filesystem::temp_directory_path() / "skyview_skymap_site";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path dir = skyview::test::temp_dir("skymap-site");
   const Result moved = run((dir / "m.tif").string() + " --no-preview --size 16 --sky perez-epw --epw " + epw +
                            " --lat 45 --lon 7 --from 2024-06-21T00:00Z --to 2024-06-22T00:00Z");
   EXPECT_EQ(moved.code, 0) << moved.output;
@@ -83,9 +80,7 @@ TEST(SkymapCli, OptionsTheSkyDoesNotUseAreRefused) {
 // A sky that delivers more than arrives outside the atmosphere is said: Preetham's does at
 // turbidity 10 with the sun at the zenith, not at 2.5.
 TEST(SkymapCli, ExposureAboveTheExtraterrestrialIsSaid) {
-  const auto dir = std::filesystem::temp_directory_path() / "skyview_skymap_energy";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path dir = skyview::test::temp_dir("skymap-energy");
   const std::string noon = " --no-preview --size 32 --lat 0 --lon 0 --from 2024-03-20T11:37Z --to 2024-03-20T12:37Z";
   const Result clear = run((dir / "a.tif").string() + noon + " --turbidity 2.5");
   EXPECT_EQ(clear.code, 0) << clear.output;

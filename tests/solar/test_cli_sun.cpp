@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <string>
 
+#include "temp_dir.h"
+
 namespace {
 
 struct SunRun {
@@ -17,7 +19,7 @@ struct SunRun {
 };
 
 SunRun run_sun(const std::string& args) {
-  const std::string base = ::testing::TempDir() + "/skyview_sun_" + std::to_string(::getpid());
+  const std::string base = skyview::test::temp_dir("sun") + "/run";
   const std::string cmd = std::string(SKYVIEW_EXE) + " sun " + args + " >" + base + ".out 2>" + base + ".err";
   const int status = std::system(cmd.c_str());
   auto slurp = [](const std::string& path) {
