@@ -468,7 +468,6 @@ struct BandWriter::State {
   DatasetPtr ds;
   bool direct = false;  // ds is the output under `tmp`, not a memory dataset
   std::vector<float> buffer;
-  std::vector<std::string> names;  // the bands' descriptions
 };
 
 BandWriter::BandWriter(const std::string& path, int width, int height, int bands, const GeoReference& georef,
@@ -484,7 +483,6 @@ BandWriter::BandWriter(const std::string& path, int width, int height, int bands
   check_output_format(options.format, bands, options.creation_options);
   s.driver = output_driver(options.format);
   s.direct = CSLFetchBoolean(s.driver->GetMetadata(), GDAL_DCAP_CREATE, FALSE);
-  s.names.resize(static_cast<std::size_t>(bands));
   if (s.direct) {
     const CPLStringList opts = creation_options(options.format, GDT_Float32, options.creation_options);
     s.tmp = temporary_name(path);
@@ -534,7 +532,6 @@ void BandWriter::describe(int index, const OutputBand& src) {
   GDALRasterBand* band = band_of(s_->ds.get(), index, s_->path);
   band->SetNoDataValue(s_->options.nodata);
   band->SetDescription(src.description.c_str());
-  s_->names[static_cast<std::size_t>(index)] = src.description;
   band->SetUnitType(src.unit.c_str());
   for (const auto& [k, v] : src.metadata) band->SetMetadataItem(k.c_str(), v.c_str());
 }
@@ -554,10 +551,15 @@ void BandWriter::finish() {
     s.ds.reset();
     return;
   }
+  // netCDF variables are named after the bands once the file is closed (netcdf_names.cpp).
+  const bool netcdf = EQUAL(s.driver->GetDescription(), "netCDF");
+  std::vector<std::string> names;
+  for (int b = 1; netcdf && b <= s.ds->GetRasterCount(); ++b)
+    names.emplace_back(s.ds->GetRasterBand(b)->GetDescription());
   std::string why = close_written(s.ds.release());
-  if (why.empty() && EQUAL(s.driver->GetDescription(), "netCDF")) {
+  if (why.empty() && netcdf) {
     try {
-      detail::name_netcdf_variables(s.tmp, s.names);
+      detail::name_netcdf_variables(s.tmp, names);
     } catch (const Error& e) {
       why = e.what();
     }

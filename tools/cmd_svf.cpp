@@ -71,20 +71,20 @@ Runner setup(CLI::App& app) {
   return [o, preview, products] {
     const std::vector<const ProductBand*> chosen = chosen_products(*products);
     ThreadLimit limit(o->out.threads);
+    // Only the products written (and svf for the preview) are summed; negative openness is the only
+    // one that needs the lowest angles, a second walk.
+    ProductSet keep = ProductSet::none();
+    for (const ProductBand* c : chosen) keep.add(c->product);
+    if (!preview->empty()) keep.add(Product::svf);
     HorizonJobOptions opts = *o;
-    // Negative openness is the only product that needs the lowest angles: a second walk.
-    opts.params.lower = std::any_of(chosen.begin(), chosen.end(),
-                                    [](const ProductBand* p) { return p->product == Product::openness_negative; });
+    opts.params.lower = keep.has(Product::openness_negative);
     HorizonJob job = prepare_horizon_job(opts, "svf", {*preview});
     if (!preview->empty()) require_extension(*preview, {".png"}, "--preview");
     const bool monte_carlo = job.engine->name() == "raycast" && job.engine->params().rays > 0;
     check_output_format(o->out.format, static_cast<int>(chosen.size()) + (monte_carlo ? 2 : 0),
                         o->out.creation_options);
     // Horizons are held a part at a time (compute_sky_view), so memory does not grow with the
-    // number of directions; only the products written (and svf for the preview) are summed.
-    ProductSet keep = ProductSet::none();
-    for (const ProductBand* c : chosen) keep.add(c->product);
-    if (!preview->empty()) keep.add(Product::svf);
+    // number of directions.
     SkyViewProducts p;
     with_progress(job, [&](ProgressCounter& progress) {
       p = compute_sky_view(*job.engine, job.terrain, Window::whole(job.terrain), job.edge, progress, kHorizonBlockBytes,
