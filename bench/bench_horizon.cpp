@@ -69,10 +69,12 @@ void BM_March16R100NoEarlyExit(benchmark::State& s) {
   p.early_exit = false;
   run(s, "march", p);
 }
-// The argument is the number of exact near steps (--samples); 64 is the default.
+// The arguments are the number of exact near steps (--samples; 64 is the default) and of far lines
+// (--far-lines; 2 is the default).
 void BM_Sweep16(benchmark::State& s) {
   skyview::HorizonParams p;
   p.samples = static_cast<int>(s.range(0));
+  p.far_lines = static_cast<int>(s.range(1));
   run(s, "sweep", p);
 }
 void BM_Sweep16WithLower(benchmark::State& s) {
@@ -213,7 +215,17 @@ BENCHMARK(BM_Sampled16x16)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTim
 BENCHMARK(BM_Sampled16x16NoEarlyExit)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_March16R100)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 BENCHMARK(BM_March16R100NoEarlyExit)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
-BENCHMARK(BM_Sweep16)->Arg(64)->Arg(16)->Arg(8)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+BENCHMARK(BM_Sweep16)
+    ->Args({64, 2})
+    ->Args({16, 2})
+    ->Args({8, 2})
+    ->Args({1, 2})
+    ->Args({64, 1})
+    ->Args({32, 1})
+    ->Args({16, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
 BENCHMARK(BM_Sweep16WithLower)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_SvfWhole16)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_SvfStreamed16)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);

@@ -37,6 +37,7 @@ AccuracyChoice choose_for_max_error(double max_error, const HorizonParams& base)
   c.params = base;
   c.params.directions = best->directions;
   c.params.samples = best->samples;
+  if (best->far_lines > 0) c.params.far_lines = best->far_lines;
   c.params.radius = 0.0;  // each method's calibrated default
   return c;
 }

@@ -21,7 +21,7 @@ std::string BenchConfig::label() const {
   std::ostringstream s;
   s << method << " d=" << params.directions;
   if (method == "sampled") s << " s=" << params.samples;
-  if (method == "sweep") s << " near=" << params.samples;
+  if (method == "sweep") s << " near=" << params.samples << (params.far_lines == 1 ? " 1 line" : "");
   if (method == "sampled" || method == "march") s << " r=" << (params.radius == 0 ? 500 : params.radius);
   return s.str();
 }
@@ -42,12 +42,15 @@ std::vector<BenchConfig> default_bench_grid(const std::vector<std::string>& meth
         }
       }
     } else if (m == "sweep") {
-      for (int d : {8, 16, 32, 64}) {
-        for (int near : {8, 16, 32, 64, 128}) {
-          BenchConfig c{m, {}};
-          c.params.directions = d;
-          c.params.samples = near;
-          grid.push_back(c);
+      for (int lines : {2, 1}) {
+        for (int d : {8, 16, 32, 64}) {
+          for (int near : {8, 16, 32, 64, 128}) {
+            BenchConfig c{m, {}};
+            c.params.directions = d;
+            c.params.samples = near;
+            c.params.far_lines = lines;
+            grid.push_back(c);
+          }
         }
       }
     } else if (m == "march") {
@@ -147,16 +150,18 @@ nlohmann::json bench_to_json(const std::string& raster, const BenchReference& re
   j["raster"] = raster;
   j["reference"] = {{"method", "raycast"}, {"directions", ref.directions}, {"seconds", ref.seconds}};
   for (const auto& r : rs) {
-    j["results"].push_back({{"method", r.config.method},
-                            {"label", r.config.label()},
-                            {"directions", r.config.params.directions},
-                            {"samples", r.config.params.samples},
-                            {"radius_m", r.config.params.radius},
-                            {"seconds", r.seconds},
-                            {"cell_directions_per_second", r.cell_dirs_per_second},
-                            {"pareto", r.pareto},
-                            {"svf", stats_json(r.svf)},
-                            {"sky_visibility", stats_json(r.sky_visibility)}});
+    nlohmann::json row = {{"method", r.config.method},
+                          {"label", r.config.label()},
+                          {"directions", r.config.params.directions},
+                          {"samples", r.config.params.samples},
+                          {"radius_m", r.config.params.radius},
+                          {"seconds", r.seconds},
+                          {"cell_directions_per_second", r.cell_dirs_per_second},
+                          {"pareto", r.pareto},
+                          {"svf", stats_json(r.svf)},
+                          {"sky_visibility", stats_json(r.sky_visibility)}};
+    if (r.config.method == "sweep") row["far_lines"] = r.config.params.far_lines;
+    j["results"].push_back(row);
   }
   return j;
 }

@@ -27,6 +27,11 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
   app.add_option("--samples", o.params.samples,
                  "Per direction: samples (sampled, default 16) or exact near steps (sweep, default 64); 0 = default")
       ->capture_default_str();
+  app.add_option("--far-lines", o.params.far_lines,
+                 "Sweep beyond its near steps: tangents to the hulls of both lines beside a cell, interpolated (2), "
+                 "or of the nearer only (1: faster, about as accurate as 2 with half the near steps)")
+      ->check(CLI::IsMember({1, 2}))
+      ->capture_default_str();
   app.add_option(
          "--radius", o.params.radius,
          "Search radius in metres (march and sampled: default 500; sweep: unlimited, or every crossing within it)")
@@ -47,7 +52,7 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
       ->check(finite_number());
   app.add_option("--max-error", o.max_error,
                  "Choose the cheapest method and parameters whose calibrated 99th-percentile svf error is below "
-                 "this; it sets --method, --directions, --samples and --radius, which are then refused")
+                 "this; it sets --method, --directions, --samples, --far-lines and --radius, which are then refused")
       ->check(number_in(0.0, 1.0));
   app.add_flag("!--no-early-exit", o.params.early_exit,
                "Disable early termination (march and sampled: the max-height pyramid; sweep: skipped far-field "
@@ -64,15 +69,18 @@ namespace {
 void check_options_apply(const HorizonJobOptions& o, const std::string& method) {
   if (!o.app) return;
   if (o.max_error >= 0.0) {
-    for (const char* name : {"--method", "--directions", "--samples", "--radius"}) {
+    for (const char* name : {"--method", "--directions", "--samples", "--far-lines", "--radius"}) {
       refuse_unused(*o.app, name, false,
-                    "runs without --max-error, which chooses --method, --directions, --samples and --radius itself");
+                    "runs without --max-error, which chooses --method, --directions, --samples, --far-lines and "
+                    "--radius itself");
     }
   }
   const std::string used_by = " (this run uses " + method + ")";
   refuse_unused(*o.app, "--rays", method == "raycast", "--method raycast" + used_by);
   refuse_unused(*o.app, "--seed", method == "sampled", "--method sampled" + used_by);
   refuse_unused(*o.app, "--samples", method == "sampled" || method == "sweep", "--method sampled or sweep" + used_by);
+  refuse_unused(*o.app, "--far-lines", method == "sweep" && !(o.params.radius > 0.0),
+                "--method sweep at unlimited radius" + used_by);
 }
 
 }  // namespace
@@ -101,8 +109,8 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   job.engine = make_horizon_engine(method, params);
   if (job.edge == EdgeMode::nodata && std::isinf(job.engine->radius())) {
     throw Error(std::string("--edge nodata blanks the cells whose search reaches the raster's edge, which with an ") +
-                (choice ? "unlimited radius (what --max-error chose: it sets --method, --directions, --samples and "
-                          "--radius) is every cell; choose the method and --radius yourself"
+                (choice ? "unlimited radius (what --max-error chose: it sets --method, --directions, --samples, "
+                          "--far-lines and --radius) is every cell; choose the method and --radius yourself"
                         : "unlimited radius is every cell; give --radius"));
   }
   job.quiet = o.out.quiet;
@@ -131,7 +139,10 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
     m["MAX_ERROR_CHOICE"] =
         choice->method + " with " + std::to_string(choice->entry.directions) + " directions" +
         (choice->method == "sampled" ? " and " + std::to_string(choice->entry.samples) + " samples" : "") +
-        (choice->method == "sweep" ? " and " + std::to_string(choice->entry.samples) + " exact near steps" : "");
+        (choice->method == "sweep"
+             ? ", " + std::to_string(choice->entry.samples) + " exact near steps and " +
+                   std::to_string(choice->entry.far_lines) + " far line" + (choice->entry.far_lines == 1 ? "" : "s")
+             : "");
     m["MAX_ERROR_CALIBRATED_P99"] = number_text(choice->entry.worst_p99);
     m["MAX_ERROR_BASIS"] =
         "worst 99th-percentile |svf error| against a 64-direction ray cast over the calibration "

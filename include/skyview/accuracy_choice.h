@@ -13,6 +13,7 @@ struct CalibrationEntry {
   std::string method;
   int directions = 16;
   int samples = 16;
+  int far_lines = 0;       // sweep: lines whose hulls a cell asks (1 or 2); 0 for other methods
   double worst_p99 = 0;    // worst 99th-percentile |svf error| over the calibration rasters
   double ns_per_cell = 0;  // median cost on 2 cores, for ordering
 };

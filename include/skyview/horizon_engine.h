@@ -19,6 +19,8 @@ struct HorizonParams {
   int directions = 16;             // azimuth sectors, the first centred on north, clockwise
   int samples = 0;                 // per direction: samples (sampled, default 16), exact near
                                    // crossings before the hulls (sweep, default 64); 0 = default
+  int far_lines = 2;               // sweep: lines whose hulls a cell asks beyond its near steps,
+                                   // 2 (slopes interpolated by its offset) or 1 (the nearer)
   double radius = 0.0;             // search radius in metres; 0 = method default (unlimited for sweep)
   std::uint64_t seed = 0;          // per-cell rotation seed (sampled method)
   bool lower = false;              // also the lowest elevation angle per direction (negative openness)

@@ -224,6 +224,7 @@ TEST_F(CliErrors, NumbersThatSteerTheRunMustBeNumbers) {
                         "--max-error must be above 0");
   expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --threads -1", dir),
                         "--threads: must be zero or positive", 2);
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --far-lines 3", dir), "--far-lines", 2);
   EXPECT_FALSE(std::filesystem::exists(dir + "/o.tif"));
 }
 
@@ -238,6 +239,11 @@ TEST_F(CliErrors, OptionsTheRunWouldNotUseAreRefused) {
       {"svf " + good + o + " --max-error 0.02 --directions 64",
        "--directions applies only to runs without --max-error"},
       {"svf " + good + o + " --max-error 0.02 --method march", "--method applies only to runs without --max-error"},
+      {"svf " + good + o + " --max-error 0.02 --far-lines 1", "--far-lines applies only to runs without --max-error"},
+      {"svf " + good + o + " --far-lines 1 --radius 50",
+       "--far-lines applies only to --method sweep at unlimited radius (this run uses sweep)"},
+      {"horizon " + good + o + " --method march --far-lines 2",
+       "--far-lines applies only to --method sweep at unlimited radius (this run uses march)"},
       {"horizon " + good + o + " --method raycast --rays 64", "--rays applies only to skyview svf"},
       {"synth lidar " + dir + "/l.las -of GTiff", "--of applies only to the raster kinds"}};
   for (const auto& [args, message] : refused) expect_one_line_error(run_skyview(args, dir), message);
