@@ -64,7 +64,7 @@ TEST_P(AnalyticCase, TiltedPlaneSurfaceSvfIsOnePlusCosOverTwo) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, AnalyticCase, ::testing::Values("march", "sampled", "sweep", "raycast"));
+INSTANTIATE_TEST_SUITE_P(Methods, AnalyticCase, ::testing::Values("march", "sampled", "sweep", "sweep1", "raycast"));
 
 class StreetCanyon : public ::testing::TestWithParam<std::string> {};
 
@@ -82,7 +82,7 @@ TEST_P(StreetCanyon, FloorCentreMatchesInfiniteCanyon) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, StreetCanyon, ::testing::Values("march", "sweep", "raycast"));
+INSTANTIATE_TEST_SUITE_P(Methods, StreetCanyon, ::testing::Values("march", "sweep", "sweep1", "raycast"));
 
 TEST(GroundFrame, PitInUtmAndInDegreesAtLatitude60GivesTheSameValues) {
   const double r = 20.0, depth = 10.0, cell = 0.2;

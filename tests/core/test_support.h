@@ -24,7 +24,15 @@ struct CellResult {
 };
 
 // Runs `method` for the single cell (col, row) and returns its products.
-inline CellResult run_cell(const Terrain& t, int col, int row, const std::string& method, HorizonParams p) {
+// Test names of engines: a method, or "sweep1", the sweep with one far line (--far-lines 1).
+inline std::string engine_method(const std::string& name, HorizonParams& p) {
+  if (name != "sweep1") return name;
+  p.far_lines = 1;
+  return "sweep";
+}
+
+inline CellResult run_cell(const Terrain& t, int col, int row, const std::string& name, HorizonParams p) {
+  const std::string method = engine_method(name, p);
   p.lower = true;
   if (method == "sweep") p.radius = 0.0;  // exact over the whole raster
   if (method == "raycast") p.rays = 0;
