@@ -35,8 +35,8 @@ struct BenchReference {
   int directions = 0;
 };
 
-// The default grid: sampled (directions x samples), march (directions), sweep (directions x
-// exact near steps 8, 64, 128).
+// The default grid: sampled (directions x samples), march (directions), sweep (directions 8-64 x
+// exact near steps 8-128 x one or two far lines).
 std::vector<BenchConfig> default_bench_grid(const std::vector<std::string>& methods);
 
 BenchReference compute_reference(const Terrain& terrain, int directions);
