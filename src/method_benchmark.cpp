@@ -221,8 +221,14 @@ void plot_bench(const std::string& png_path, const std::string& title, const std
   cv::putText(img, title, cv::Point((W - title_size.width) / 2, 24), cv::FONT_HERSHEY_SIMPLEX, 0.6, black);
   cv::putText(img, "time per run (log)", cv::Point(W / 2 - 60, H - 20), cv::FONT_HERSHEY_SIMPLEX, 0.5, black);
   cv::putText(img, "p99 |svf error|", cv::Point(5, top - 10), cv::FONT_HERSHEY_SIMPLEX, 0.5, black);
-  const std::map<std::string, cv::Scalar> colour{
-      {"sampled", cv::Scalar(40, 120, 230)}, {"march", cv::Scalar(60, 170, 60)}, {"sweep", cv::Scalar(200, 60, 60)}};
+  // One series per method, and the sweep's one-far-line variant apart: it makes its own front.
+  auto series = [](const BenchConfig& c) {
+    return c.method == "sweep" && c.params.far_lines == 1 ? std::string("sweep, 1 far line") : c.method;
+  };
+  const std::map<std::string, cv::Scalar> colour{{"sampled", cv::Scalar(40, 120, 230)},
+                                                 {"march", cv::Scalar(60, 170, 60)},
+                                                 {"sweep", cv::Scalar(200, 60, 60)},
+                                                 {"sweep, 1 far line", cv::Scalar(200, 60, 200)}};
   std::vector<const BenchResult*> front;
   for (const auto& r : results) {
     if (r.pareto) front.push_back(&r);
@@ -233,17 +239,20 @@ void plot_bench(const std::string& png_path, const std::string& title, const std
              cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   }
   for (const auto& r : results) {
-    const auto it = colour.find(r.config.method);
+    const auto it = colour.find(series(r.config));
     const cv::Scalar c = it == colour.end() ? black : it->second;
     cv::circle(img, px(r.seconds, r.svf.p99), r.pareto ? 6 : 4, c, cv::FILLED, cv::LINE_AA);
   }
   int y = top + 10;
+  std::set<std::string> shown;
+  for (const auto& r : results) shown.insert(series(r.config));
   for (const auto& [name, c] : colour) {
-    cv::circle(img, cv::Point(W - 140, y), 5, c, cv::FILLED, cv::LINE_AA);
-    cv::putText(img, name, cv::Point(W - 128, y + 5), cv::FONT_HERSHEY_SIMPLEX, 0.5, black);
+    if (!shown.count(name)) continue;
+    cv::circle(img, cv::Point(W - 185, y), 5, c, cv::FILLED, cv::LINE_AA);
+    cv::putText(img, name, cv::Point(W - 173, y + 5), cv::FONT_HERSHEY_SIMPLEX, 0.5, black);
     y += 20;
   }
-  cv::putText(img, "line: Pareto front", cv::Point(W - 160, y + 5), cv::FONT_HERSHEY_SIMPLEX, 0.45, black);
+  cv::putText(img, "line: Pareto front", cv::Point(W - 185, y + 5), cv::FONT_HERSHEY_SIMPLEX, 0.45, black);
   std::vector<unsigned char> png;
   if (!cv::imencode(".png", img, png)) throw Error("cannot encode the plot '" + png_path + "'");
   write_output_file(png_path, std::string(png.begin(), png.end()), overwrite);
