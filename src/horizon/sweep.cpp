@@ -14,8 +14,8 @@
 // Surface model: the ray-cast reference's mesh over cell centres, read where it can peak (every
 // row and column crossing), as the march reads it. Exact along each cell's own ray for its first
 // near_steps steps; beyond, a cell's slope interpolates its two neighbouring lines' tangents, or
-// (far_lines 1) is the nearer line's tangent: one query instead of two, 17-24% faster at equal near
-// steps, and about as accurate as two lines with half the near steps (docs/benchmarks.md).
+// (far_lines 1) is the nearer line's tangent: one query instead of two, and about as accurate as
+// two lines with half the near steps (measured in docs/benchmarks.md).
 // With a radius, no hulls: every crossing within it along each cell's own ray (a vectorised march).
 //
 // Memory layout, the cost that matters: lines are walked in bands of kBand neighbouring lines
@@ -507,10 +507,7 @@ class DirectionSweep {
       if (a >= b) continue;
       near_field(g, near_, major, a, b, state[0].best, n_walks_ > 1 ? state[1].best : nullptr);
       for (int w = 0; w < n_walks_; ++w) {
-        if (far_lines_ == 1)
-          far_field<1>(walks_[w], m0, step, here, a, b, state[w], strips[w]);
-        else
-          far_field<2>(walks_[w], m0, step, here, a, b, state[w], strips[w]);
+        far_field(walks_[w], m0, step, here, a, b, state[w], strips[w]);
         write_angles(g, window_, major, a, b, state[w].best, walks_[w].sign, walks_[w].plane);
       }
     }
@@ -567,17 +564,37 @@ class DirectionSweep {
     }
   }
 
+  // The lines of its strip a row's cells ask: both; the first (no offset); or the nearer, `line`, or
+  // the other where `line` has no hull yet (near the raster's sides).
+  enum class Ask { both, first, nearer };
+
   // Beyond the near field each cell, at its own height, takes its tangent to the hulls of the lines
-  // beside it (both, or the nearer: far_lines), unless a bound (the hulls' highest points, or StripBound) shows that
-  // they cannot beat its near field. Slopes, not angles, are interpolated: one arctangent per cell.
-  template <int kLines>
+  // beside it (both, or the nearer: far_lines), unless a bound (the hulls' highest points, or
+  // StripBound) shows that they cannot beat its near field. Which lines a cell asks depends only on
+  // the row's offset, so the row picks the loop: both lines, their slopes (not angles) interpolated
+  // by the offset, one arctangent per cell; or one line. With no offset (along axes and diagonals)
+  // a cell lies on its first line and only that one counts.
   void far_field(const Walk& walk, long m0, int step, const StepLines& here, int a, int b, const WalkState& state,
                  StripBound* strips) const {
+    const double fu = here.offset;
+    if (fu == 0.0)
+      far_cells<Ask::first>(walk, m0, step, here, a, b, state, strips, 0);
+    else if (far_lines_ == 2)
+      far_cells<Ask::both>(walk, m0, step, here, a, b, state, strips, 0);
+    else
+      far_cells<Ask::nearer>(walk, m0, step, here, a, b, state, strips, fu > 0.5 ? 1 : 0);
+  }
+
+  // The far field of one row's cells [a, b), each asking the lines of its strip that kAsk names.
+  template <Ask kAsk>
+  void far_cells(const Walk& walk, long m0, int step, const StepLines& here, int a, int b, const WalkState& state,
+                 StripBound* strips, int line) const {
+    constexpr int kAsked = kAsk == Ask::both ? 2 : 1;
     const float* zrow = g_.row(here.major);
     LineHull* hulls = state.hulls;
     float* best = state.best;
     const double c = walk.c;
-    const double fu = here.offset;  // the same for every cell of the row
+    const double weight_of[2] = {1.0 - here.offset, here.offset};
     for (int minor = a; minor < b; ++minor) {
       const float zc = zrow[minor];
       if (std::isnan(zc)) continue;
@@ -585,19 +602,13 @@ class DirectionSweep {
       const long m = minor + here.cell_line;
       const HullPoint p{t, walk.folded(t, zc)};
       LineHull* pair = hulls + (m - m0);  // the strip's two lines
-      // The lines asked, with their weights. With no offset (fu == 0: along axes and diagonals)
-      // the cell lies on the first line and only it counts. With one line, the nearer (the other
-      // where the nearer has no hull yet, near the raster's sides).
-      int used[2], n_used = 1;
-      double weight_of[2] = {1.0 - fu, fu};
-      if (kLines == 2) {
+      int used[kAsked];
+      if constexpr (kAsk == Ask::both) {
+        used[0] = 0, used[1] = 1;
+      } else if constexpr (kAsk == Ask::first) {
         used[0] = 0;
-        if (fu > 0.0) used[n_used++] = 1;
       } else {
-        int l = fu > 0.5 ? 1 : 0;
-        if (fu > 0.0 && pair[l].n == 0 && pair[1 - l].n > 0) l = 1 - l;
-        used[0] = l;
-        weight_of[l] = 1.0;
+        used[0] = pair[line].n == 0 && pair[1 - line].n > 0 ? 1 - line : line;
       }
       const double near = best[minor];
       const double near_folded = near - 2.0 * c * t;  // in the hulls' folded heights
@@ -605,11 +616,8 @@ class DirectionSweep {
       // The far slope of a line is at most its highest point over the smallest gap; or, from the
       // strip's previous cell, see StripBound. Both need every hull point ahead (far_gap_ > 0).
       const bool skips = early_exit_ && far_gap_ > 0.0;
-      double top = -kInf, bound = -kInf;
-      for (int i = 0; i < n_used; ++i) {
-        top = std::max(top, pair[used[i]].top);
-        bound = std::max(bound, previous.slope[used[i]]);
-      }
+      double top = pair[used[0]].top, bound = previous.slope[used[0]];
+      if constexpr (kAsked == 2) top = std::max(top, pair[1].top), bound = std::max(bound, previous.slope[1]);
       const double rise = top - p.z;
       bool hidden = skips && near_folded >= (rise > 0.0 ? rise * inv_far_gap_ : 0.0);
       if (skips && !hidden && previous.step == step - 1) {
@@ -622,24 +630,24 @@ class DirectionSweep {
         // Old points are at least far_gap_ from the previous cell: their slopes from here are at
         // most (bound far_gap + rise) / (far_gap + dt), or the bound itself, farther away.
         hidden = dt > 0.0 && bound * far_gap_ + (previous.z - p.z) <= near_folded * (far_gap_ + dt);
-        for (int i = 0; i < n_used && hidden; ++i) hidden = beaten(used[i]);
+        for (const int l : used) hidden = hidden && beaten(l);
       }
       previous.step = step;
       previous.t = t;
       previous.z = p.z;
-      previous.slope[0] = previous.slope[1] = kInf;  // a line not asked is not bounded
+      if constexpr (kAsked == 1) previous.slope[1 - used[0]] = kInf;  // a line not asked is not bounded
       if (hidden) {
-        for (int i = 0; i < n_used; ++i) previous.slope[used[i]] = near_folded;
+        for (const int l : used) previous.slope[l] = near_folded;
         continue;
       }
       // Slopes are interpolated in folded heights: the weights sum to one wherever the lines have
       // hulls, and adding 2ct back commutes with the weighted mean.
       double far = 0.0, weight = 0.0;
-      for (int i = 0; i < n_used; ++i) {
-        const int l = used[i];
+      for (const int l : used) {
         LineHull& h = pair[l];
         previous.slope[l] = h.n > 0 ? h.tangent_slope(p, l) : -kInf;
-        if (h.n > 0) far += weight_of[l] * previous.slope[l], weight += weight_of[l];
+        const double w = kAsk == Ask::both ? weight_of[l] : 1.0;
+        if (h.n > 0) far += w * previous.slope[l], weight += w;
       }
       if (weight > 0.0) best[minor] = static_cast<float>(std::max(near, far / weight + 2.0 * c * t));
     }
