@@ -69,6 +69,7 @@ struct LineHull {
   std::size_t n = 0;
   double top = -kInf;
   HullPoint last{0, 0}, before_last{0, 0};
+  double first_t = 0;  // position of the farthest point (never popped)
   // The last tangent point found for the strip on either side of the line (cells there differ
   // in height, so their tangents differ); pops only remove nearer points.
   std::size_t hint[2] = {0, 0};
@@ -94,9 +95,25 @@ struct LineHull {
       --n;
     }
     if (n > 0) before_last = points[n - 1];
+    if (n == 0) first_t = p.t;
     points[n++] = p;
     last = p;
     top = std::max(top, p.z);
+  }
+
+  // Whether no point of the hull rises above slope s from p, judged from the copies alone: the
+  // hull is concave, so beyond its nearest point it lies under the line through its two nearest
+  // points and under its highest point; the slope from p to that envelope is monotone on each of
+  // its two pieces, so their ends bound it.
+  bool under_slope(const HullPoint& p, double s) const {
+    if (n == 0) return true;
+    auto under = [&](double qt, double qz) { return qz - p.z <= s * (qt - p.t); };
+    if (!under(last.t, last.z)) return false;
+    if (n == 1) return true;
+    const double dt = before_last.t - last.t, dz = before_last.z - last.z;
+    if (dz <= 0.0) return under(first_t, last.z);
+    const double reach = last.t + (top - last.z) * (dt / dz);  // where the line meets the top
+    return under(std::min(reach, first_t), top) && under(first_t, top);
   }
 
   // Slope of the tangent from p. Slopes rise along the hull up to the tangent point T and fall
@@ -409,20 +426,6 @@ std::vector<StepLines> step_lines(const SweepGeometry& g) {
   return out;
 }
 
-// What a strip's previous cell (one step ahead of the current one) proved about its two lines: an
-// upper bound of its (folded) tangent slope to each. Hull points it saw are farther from the
-// current cell by the same distance dt, so their slopes from here are at most a weighted mean of
-// that bound and the slope from here to the previous cell; only the points pushed since (at most
-// two per line: its nearest) need checking. Where the near field beats all of that, the far field
-// cannot change the horizon and the tangent search is skipped: a third of all cells and directions
-// on the synthetic city with 64 near steps, where the bound on the hulls' highest points alone
-// skipped one in twelve.
-struct StripBound {
-  int step = -2;  // step of the strip's previous cell
-  double t = 0, z = 0;
-  double slope[2] = {kInf, kInf};
-};
-
 constexpr int kBand = 256;  // cells' strips per band; the band keeps kBand + 1 hulls
 
 // Scratch for one step's samples of a band's lines (row crossings and minor grid crossings): the
@@ -434,7 +437,7 @@ struct BandSamples {
 
 // One of the walks a band makes at once over the same lines: the horizon (heights as they are) or
 // the lowest angle (heights negated, so the lowest terrain is the highest). Each keeps its own
-// hulls, strip bounds, slopes and output plane; they share the line samples and the near field's
+// hulls, slopes and output plane; they share the line samples and the near field's
 // crossings, which are about 40% of a walk's time.
 struct Walk {
   double sign = 1, c = 0;  // heights' sign, and the curvature coefficient in that sign
@@ -493,7 +496,6 @@ class DirectionSweep {
     for (int w = 0; w < n_walks_; ++w) {
       for (int l = 0; l <= kBand; ++l) state[w].hulls[l].clear();
     }
-    StripBound strips[kMaxWalks][kBand];
     BandSamples samples;
     for (int step = 0; step <= last_step_; ++step) {
       // Samples from more than near_steps steps back join their line's hull, far to near: the
@@ -507,7 +509,7 @@ class DirectionSweep {
       if (a >= b) continue;
       near_field(g, near_, major, a, b, state[0].best, n_walks_ > 1 ? state[1].best : nullptr);
       for (int w = 0; w < n_walks_; ++w) {
-        far_field(walks_[w], m0, step, here, a, b, state[w], strips[w]);
+        far_field(walks_[w], m0, here, a, b, state[w]);
         write_angles(g, window_, major, a, b, state[w].best, walks_[w].sign, walks_[w].plane);
       }
     }
@@ -569,32 +571,33 @@ class DirectionSweep {
   enum class Ask { both, first, nearer };
 
   // Beyond the near field each cell, at its own height, takes its tangent to the hulls of the lines
-  // beside it (both, or the nearer: far_lines), unless a bound (the hulls' highest points, or
-  // StripBound) shows that they cannot beat its near field. Which lines a cell asks depends only on
-  // the row's offset, so the row picks the loop: both lines, their slopes (not angles) interpolated
-  // by the offset, one arctangent per cell; or one line. With no offset (along axes and diagonals)
-  // a cell lies on its first line and only that one counts.
-  void far_field(const Walk& walk, long m0, int step, const StepLines& here, int a, int b, const WalkState& state,
-                 StripBound* strips) const {
+  // beside it (both, or the nearer: far_lines), unless the hulls' envelopes (their highest points,
+  // then LineHull::under_slope) show that they cannot beat its near field. Which lines a cell asks
+  // depends only on the row's offset, so the row picks the loop: both lines, their slopes (not
+  // angles) interpolated by the offset, one arctangent per cell; or one line. With no offset (along
+  // axes and diagonals) a cell lies on its first line and only that one counts.
+  void far_field(const Walk& walk, long m0, const StepLines& here, int a, int b, const WalkState& state) const {
     const double fu = here.offset;
     if (fu == 0.0)
-      far_cells<Ask::first>(walk, m0, step, here, a, b, state, strips, 0);
+      far_cells<Ask::first>(walk, m0, here, a, b, state, 0);
     else if (far_lines_ == 2)
-      far_cells<Ask::both>(walk, m0, step, here, a, b, state, strips, 0);
+      far_cells<Ask::both>(walk, m0, here, a, b, state, 0);
     else
-      far_cells<Ask::nearer>(walk, m0, step, here, a, b, state, strips, fu > 0.5 ? 1 : 0);
+      far_cells<Ask::nearer>(walk, m0, here, a, b, state, fu > 0.5 ? 1 : 0);
   }
 
   // The far field of one row's cells [a, b), each asking the lines of its strip that kAsk names.
   template <Ask kAsk>
-  void far_cells(const Walk& walk, long m0, int step, const StepLines& here, int a, int b, const WalkState& state,
-                 StripBound* strips, int line) const {
+  void far_cells(const Walk& walk, long m0, const StepLines& here, int a, int b, const WalkState& state,
+                 int line) const {
     constexpr int kAsked = kAsk == Ask::both ? 2 : 1;
     const float* zrow = g_.row(here.major);
     LineHull* hulls = state.hulls;
     float* best = state.best;
     const double c = walk.c;
     const double weight_of[2] = {1.0 - here.offset, here.offset};
+    // The bounds need every hull point ahead of the cell (far_gap_ > 0).
+    const bool skips = early_exit_ && far_gap_ > 0.0;
     for (int minor = a; minor < b; ++minor) {
       const float zc = zrow[minor];
       if (std::isnan(zc)) continue;
@@ -612,42 +615,26 @@ class DirectionSweep {
       }
       const double near = best[minor];
       const double near_folded = near - 2.0 * c * t;  // in the hulls' folded heights
-      StripBound& previous = strips[m - m0];
-      // The far slope of a line is at most its highest point over the smallest gap; or, from the
-      // strip's previous cell, see StripBound. Both need every hull point ahead (far_gap_ > 0).
-      const bool skips = early_exit_ && far_gap_ > 0.0;
-      double top = pair[used[0]].top, bound = previous.slope[used[0]];
-      if constexpr (kAsked == 2) top = std::max(top, pair[1].top), bound = std::max(bound, previous.slope[1]);
-      const double rise = top - p.z;
-      bool hidden = skips && near_folded >= (rise > 0.0 ? rise * inv_far_gap_ : 0.0);
-      if (skips && !hidden && previous.step == step - 1) {
-        const double dt = previous.t - t;
-        auto beaten = [&](int l) {
-          const LineHull& h = pair[l];
-          auto below = [&](const HullPoint& q) { return q.z - p.z <= near_folded * (q.t - t); };
-          return previous.slope[l] <= near_folded && (h.n == 0 || (below(h.last) && (h.n < 2 || below(h.before_last))));
-        };
-        // Old points are at least far_gap_ from the previous cell: their slopes from here are at
-        // most (bound far_gap + rise) / (far_gap + dt), or the bound itself, farther away.
-        hidden = dt > 0.0 && bound * far_gap_ + (previous.z - p.z) <= near_folded * (far_gap_ + dt);
-        for (const int l : used) hidden = hidden && beaten(l);
-      }
-      previous.step = step;
-      previous.t = t;
-      previous.z = p.z;
-      if constexpr (kAsked == 1) previous.slope[1 - used[0]] = kInf;  // a line not asked is not bounded
-      if (hidden) {
-        for (const int l : used) previous.slope[l] = near_folded;
-        continue;
+      if (skips) {
+        // First the cheapest bound: the highest point over the smallest gap.
+        double top = pair[used[0]].top;
+        if constexpr (kAsked == 2) top = std::max(top, pair[1].top);
+        const double rise = top - p.z;
+        bool hidden = near_folded >= (rise > 0.0 ? rise * inv_far_gap_ : 0.0);
+        if (!hidden) {
+          hidden = true;
+          for (const int l : used) hidden = hidden && pair[l].under_slope(p, near_folded);
+        }
+        if (hidden) continue;
       }
       // Slopes are interpolated in folded heights: the weights sum to one wherever the lines have
       // hulls, and adding 2ct back commutes with the weighted mean.
       double far = 0.0, weight = 0.0;
       for (const int l : used) {
         LineHull& h = pair[l];
-        previous.slope[l] = h.n > 0 ? h.tangent_slope(p, l) : -kInf;
+        if (h.n == 0) continue;
         const double w = kAsk == Ask::both ? weight_of[l] : 1.0;
-        if (h.n > 0) far += w * previous.slope[l], weight += w;
+        far += w * h.tangent_slope(p, l), weight += w;
       }
       if (weight > 0.0) best[minor] = static_cast<float>(std::max(near, far / weight + 2.0 * c * t));
     }

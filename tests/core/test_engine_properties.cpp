@@ -327,8 +327,8 @@ TEST(SweepHulls, AlongAxesTheFarFieldEqualsTheMarch) {
   EXPECT_GT(far, sweep.upper.size() / 10);
 }
 
-// The sweep skips a far-field search where the hulls' highest points, or the bound carried along
-// the strip from the previous cell, show that the near field wins. Skipping must change nothing:
+// The sweep skips a far-field search where the hulls' highest points, or their envelopes (the line
+// through a hull's two nearest points, capped by its highest point), show that the near field wins. Skipping must change nothing:
 // with nodata holes, the lowest angle (negated heights), Earth curvature folded into the hulls (it
 // makes flat ground a dome whose every sample is a hull point) and few or many exact near steps.
 TEST(SweepHulls, SkippedSearchesChangeNothing) {
