@@ -328,9 +328,10 @@ TEST(SweepHulls, AlongAxesTheFarFieldEqualsTheMarch) {
 }
 
 // The sweep skips a far-field search where the hulls' highest points, or their envelopes (the line
-// through a hull's two nearest points, capped by its highest point), show that the near field wins. Skipping must change nothing:
-// with nodata holes, the lowest angle (negated heights), Earth curvature folded into the hulls (it
-// makes flat ground a dome whose every sample is a hull point) and few or many exact near steps.
+// through a hull's two nearest points, capped by its highest point), show that the near field wins.
+// Skipping must change nothing: with nodata holes, the lowest angle (negated heights), Earth
+// curvature folded into the hulls (it makes flat ground a dome whose every sample is a hull point),
+// few or many exact near steps, and one or two far lines.
 TEST(SweepHulls, SkippedSearchesChangeNothing) {
   Terrain t = small_city_with_nodata();
   punch_nodata_block(t);
