@@ -69,7 +69,7 @@ struct LineHull {
   std::size_t n = 0;
   double top = -kInf;
   HullPoint last{0, 0}, before_last{0, 0};
-  double first_t = 0;  // position of the farthest point (never popped)
+  double first_t = 0;  // position of the farthest point (pops stop before it)
   // The last tangent point found for the strip on either side of the line (cells there differ
   // in height, so their tangents differ); pops only remove nearer points.
   std::size_t hint[2] = {0, 0};
@@ -113,7 +113,7 @@ struct LineHull {
     const double dt = before_last.t - last.t, dz = before_last.z - last.z;
     if (dz <= 0.0) return under(first_t, last.z);
     const double reach = last.t + (top - last.z) * (dt / dz);  // where the line meets the top
-    return under(std::min(reach, first_t), top) && under(first_t, top);
+    return (reach >= first_t || under(reach, top)) && under(first_t, top);
   }
 
   // Slope of the tangent from p. Slopes rise along the hull up to the tangent point T and fall
@@ -616,7 +616,8 @@ class DirectionSweep {
       const double near = best[minor];
       const double near_folded = near - 2.0 * c * t;  // in the hulls' folded heights
       if (skips) {
-        // First the cheapest bound: the highest point over the smallest gap.
+        // First the cheapest bound, the highest point over the smallest gap (under_slope implies
+        // it, but this one reads only the hulls' tops).
         double top = pair[used[0]].top;
         if constexpr (kAsked == 2) top = std::max(top, pair[1].top);
         const double rise = top - p.z;
