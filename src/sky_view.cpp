@@ -145,15 +145,35 @@ double svf_tilted(const float* h, int n, double rotation, double slope, double a
 }
 
 void horn_slope_aspect(const Terrain& t, int col, int row, double& slope, double& aspect) {
-  const double z0 = t.heights(col, row);
-  auto z = [&](int dc, int dr) -> double {
-    const int c = col + dc, r = row + dr;
-    if (!t.heights.in_grid(c, r) || !t.valid(c, r)) return z0;
-    return t.heights(c, r);
+  auto has = [&](int dc, int dr) { return t.heights.in_grid(col + dc, row + dr) && t.valid(col + dc, row + dr); };
+  auto z = [&](int dc, int dr) -> double { return t.heights(col + dc, row + dr); };
+  // Horn (1981) weights three differences 1:2:1 across the centre line. Where a neighbour is
+  // missing (raster edge, nodata) a difference falls back to one side, or drops out and the others
+  // carry its weight: substituting the centre's height instead would halve the slope on a plane.
+  auto derivative = [&](bool along_cols) {
+    double sum = 0, weight = 0;
+    for (int across = -1; across <= 1; ++across) {
+      auto at = [&](int along) { return along_cols ? std::pair{along, across} : std::pair{across, along}; };
+      auto [mc, mr] = at(-1);
+      auto [oc, orow] = at(0);
+      auto [pc, pr] = at(1);
+      const bool minus = has(mc, mr), centre = has(oc, orow), plus = has(pc, pr);
+      double d;
+      if (minus && plus)
+        d = (z(pc, pr) - z(mc, mr)) / 2.0;
+      else if (centre && plus)
+        d = z(pc, pr) - z(oc, orow);
+      else if (centre && minus)
+        d = z(oc, orow) - z(mc, mr);
+      else
+        continue;
+      const double w = across == 0 ? 2.0 : 1.0;
+      sum += w * d, weight += w;
+    }
+    return weight > 0 ? sum / weight : 0.0;
   };
-  // Horn (1981): weighted central differences per pixel step.
-  const double dz_dcol = ((z(1, -1) + 2 * z(1, 0) + z(1, 1)) - (z(-1, -1) + 2 * z(-1, 0) + z(-1, 1))) / 8.0;
-  const double dz_drow = ((z(-1, 1) + 2 * z(0, 1) + z(1, 1)) - (z(-1, -1) + 2 * z(0, -1) + z(1, -1))) / 8.0;
+  const double dz_dcol = derivative(true);
+  const double dz_drow = derivative(false);
   // Pixel-space gradient = J^T * ground gradient; solve for the east/north gradient.
   const Jacobian j = t.frame.at(col + t.origin_col, row + t.origin_row);
   const double det = j.a * j.d - j.b * j.c;

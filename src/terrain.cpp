@@ -48,14 +48,39 @@ Terrain extend_at_raster_edges(const Terrain& t, const Window& w, Window& inner)
   const int left = t.origin_col == 0 ? 1 : 0, top = t.origin_row == 0 ? 1 : 0;
   const int right = t.origin_col + t.width() == full_w ? 1 : 0, bottom = t.origin_row + t.height() == full_h ? 1 : 0;
   const int W = t.width(), H = t.height();
+  // A ring cell continues its nearest boundary cell's slope outward, along each axis it lies
+  // beyond: a copy of the boundary cell would stand above a slope falling off the raster and cast
+  // a horizon on rays along the boundary. The slope is the gentler of the last two differences
+  // into the boundary, or none where they disagree in sign or meet nodata (the minmod limiter of
+  // finite-volume schemes), and at most 45°. So a plane goes on as a plane, corners and cells
+  // beside nodata included, while a wall or spike at the edge is only copied, never raised. The
+  // rule commutes with negating the terrain, as the lowest angles (its horizons) need.
+  auto rise = [&](int col, int row, int dcol, int drow, double spacing) {
+    const int c1 = col - dcol, r1 = row - drow, c2 = c1 - dcol, r2 = r1 - drow;
+    if (c2 < 0 || c2 >= W || r2 < 0 || r2 >= H || !t.valid(c1, r1) || !t.valid(c2, r2)) return 0.0;
+    const double outer = static_cast<double>(t.heights(col, row)) - t.heights(c1, r1);
+    const double inner = static_cast<double>(t.heights(c1, r1)) - t.heights(c2, r2);
+    if (outer * inner <= 0.0) return 0.0;
+    const double gentler = std::abs(outer) < std::abs(inner) ? outer : inner;
+    return std::clamp(gentler, -spacing, spacing);
+  };
   Terrain out;
   out.heights = Grid<float>(W + left + right, H + top + bottom);
   for (int r = 0; r < out.height(); ++r) {
-    const int src_r = std::clamp(r - top, 0, H - 1);
-    float* row = &out.heights(0, r);
-    std::copy_n(&t.heights(0, src_r), W, row + left);
-    if (left) row[0] = row[1];
-    if (right) row[W + left] = row[W + left - 1];
+    const int src_r = std::clamp(r - top, 0, H - 1), drow = r - top - src_r;
+    for (int c = 0; c < out.width(); ++c) {
+      const int src_c = std::clamp(c - left, 0, W - 1), dcol = c - left - src_c;
+      const float boundary = t.heights(src_c, src_r);
+      if ((dcol == 0 && drow == 0) || std::isnan(boundary)) {
+        out.heights(c, r) = boundary;
+        continue;
+      }
+      const Jacobian j = t.frame.at(src_c + t.origin_col, src_r + t.origin_row);
+      double z = boundary;
+      if (dcol != 0) z += rise(src_c, src_r, dcol, 0, std::hypot(j.a, j.c));
+      if (drow != 0) z += rise(src_c, src_r, 0, drow, std::hypot(j.b, j.d));
+      out.heights(c, r) = static_cast<float>(z);
+    }
   }
   out.base_height = t.base_height;
   out.frame = t.frame;

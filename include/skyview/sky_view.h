@@ -21,8 +21,8 @@ double sky_visibility(const float* horizons, int n);
 // slope β (radians) and aspect A (azimuth of steepest descent, radians); `rotation` offsets φ_k.
 double svf_tilted(const float* horizons, int n, double rotation, double slope, double aspect);
 
-// Slope and downslope azimuth of a cell by Horn's method on true ground distances; nodata or
-// missing neighbours take the centre cell's height.
+// Slope and downslope azimuth of a cell by Horn's method on true ground distances; where a
+// neighbour is nodata or off the raster, its differences are taken one-sided or left out.
 void horn_slope_aspect(const Terrain& terrain, int col, int row, double& slope, double& aspect);
 
 enum class EdgeMode { open, nodata };

@@ -51,7 +51,7 @@ int halo_cells(const Terrain& terrain, double radius);
 Terrain crop_terrain(const Terrain& terrain, const Window& window, int halo, Window& inner);
 
 // The buffer grown by one cell on each side where it ends at the full raster's edge, each new cell
-// at the height of its nearest boundary cell (nodata stays nodata); `inner` receives `window`'s
+// continuing its nearest boundary cell's slope outward (at most 45°; nodata stays nodata); `inner` receives `window`'s
 // position in it. The mesh over cell centres ends half a cell inside the raster's extent, so a
 // ray nearly along the boundary from a boundary cell (due north from the outer column of a UTM
 // raster, where grid north is a hair off true north) would leave it at once and miss terrain a

@@ -201,7 +201,10 @@ TEST(HardCases, RayCastMatchesTheMarchOnRoughTerrainFarFromTheMeshOrigin) {
   double worst = 0;
   for (std::size_t i = 0; i < ray.upper.size(); ++i)
     worst = std::max(worst, double(std::abs(ray.upper[i] - march.upper[i])));
-  EXPECT_LT(worst, 2e-5);
+  // Rays due west along the outer rows graze the edge ring, which continues the rough boundary's
+  // slope outward: the rounding of a float ray a hair off its row then reads that slope, up to
+  // 7e-5 rad (2e-5 where the ring copied the boundary). The eye lift this guards against was 7e-3.
+  EXPECT_LT(worst, 1e-4);
 }
 
 // A ray along a grid line meets the mesh on its edges, where Embree can lose a hit in rounding. Just
