@@ -112,6 +112,7 @@ std::vector<BenchResult> run_bench(const Terrain& terrain, const std::vector<Ben
     BenchResult r;
     r.config = config;
     r.seconds = times[times.size() / 2];
+    r.radius = engine->radius();
     r.cell_dirs_per_second =
         static_cast<double>(terrain.width()) * terrain.height() * config.params.directions / r.seconds;
     r.svf = compare_to_reference(products.svf, reference.products.svf);
@@ -154,7 +155,8 @@ nlohmann::json bench_to_json(const std::string& raster, const BenchReference& re
                           {"label", r.config.label()},
                           {"directions", r.config.params.directions},
                           {"samples", r.config.params.samples},
-                          {"radius_m", r.config.params.radius},
+                          {"radius_m", std::isinf(r.radius) ? nlohmann::json() : nlohmann::json(r.radius)},
+                          {"reference_limited", ref.limits(r.config)},
                           {"seconds", r.seconds},
                           {"cell_directions_per_second", r.cell_dirs_per_second},
                           {"pareto", r.pareto},
@@ -170,15 +172,20 @@ std::string bench_to_markdown(const std::string& raster, const BenchReference& r
                               const std::vector<BenchResult>& rs) {
   std::ostringstream s;
   s << "Raster `" << raster << "`; reference: raycast, " << ref.directions << " directions (" << std::fixed
-    << std::setprecision(1) << ref.seconds << " s). Errors are value − reference over all valid cells.\n\n";
+    << std::setprecision(1) << ref.seconds << " s). Errors are value − reference over all valid cells.";
+  if (std::any_of(rs.begin(), rs.end(), [&](const BenchResult& r) { return ref.limits(r.config); }))
+    s << " † marks configurations with more directions than the reference: their errors include the reference's "
+         "own sector error.";
+  s << "\n\n";
   s << "| method | time (s) | M cell-dirs/s | svf RMSE | svf bias | svf p99 | svf max | share >0.01 | vis p99 | Pareto "
        "|\n";
   s << "|---|---:|---:|---:|---:|---:|---:|---:|---:|:---:|\n";
   for (const auto& r : rs) {
-    s << "| " << r.config.label() << " | " << std::setprecision(3) << r.seconds << " | " << std::setprecision(1)
-      << r.cell_dirs_per_second / 1e6 << " | " << std::setprecision(4) << r.svf.rmse << " | " << r.svf.bias << " | "
-      << r.svf.p99 << " | " << r.svf.max_abs << " | " << std::setprecision(3) << r.svf.share_above << " | "
-      << std::setprecision(4) << r.sky_visibility.p99 << " | " << (r.pareto ? "●" : "") << " |\n";
+    s << "| " << r.config.label() << (ref.limits(r.config) ? " †" : "") << " | " << std::setprecision(3) << r.seconds
+      << " | " << std::setprecision(1) << r.cell_dirs_per_second / 1e6 << " | " << std::setprecision(4) << r.svf.rmse
+      << " | " << r.svf.bias << " | " << r.svf.p99 << " | " << r.svf.max_abs << " | " << std::setprecision(3)
+      << r.svf.share_above << " | " << std::setprecision(4) << r.sky_visibility.p99 << " | " << (r.pareto ? "●" : "")
+      << " |\n";
   }
   return s.str();
 }

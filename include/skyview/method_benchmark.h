@@ -25,6 +25,7 @@ struct BenchResult {
   BenchConfig config;
   double seconds = 0;  // median wall time: horizons + products
   double cell_dirs_per_second = 0;
+  double radius = 0;  // the engine's search radius in metres, infinite where unlimited
   ErrorStats svf, sky_visibility;
   bool pareto = false;  // no other result is both faster and more accurate (p99 svf)
 };
@@ -33,6 +34,10 @@ struct BenchReference {
   SkyViewProducts products;
   double seconds = 0;
   int directions = 0;
+  // A configuration with more directions than the reference is judged against a coarser one: the
+  // reference's own sector error counts against it. (With as many, the two share their azimuths and
+  // the difference is the method's own error, which is what those rows are read for.)
+  bool limits(const BenchConfig& c) const { return c.params.directions > directions; }
 };
 
 // The default grid: sampled (directions x samples), march (directions), sweep (directions 8-64 x

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "skyview/error_stats.h"
+#include "skyview/method_benchmark.h"
 #include "test_support.h"
 
 using namespace skyview;
@@ -25,6 +26,31 @@ struct KnownErrors {
     for (int row = 0; row < 10; ++row) value(10, row) = kNaN, reference(11, row) = kNaN;
   }
 };
+
+// The bench's report says each run's true radius (the march's default 500 m, none for the unlimited
+// sweep: 0 would read as a zero radius) and marks runs finer than their reference.
+TEST(BenchReport, NamesRadiiAndRunsFinerThanTheReference) {
+  const Terrain t = rasterize(circular_pit(5.0, 3.0), 15, 15, local_grid(15, 15, 1.0));
+  const BenchReference ref = compute_reference(t, 16);
+  std::vector<BenchConfig> configs(3);
+  configs[0].method = "march", configs[0].params.directions = 16;
+  configs[1].method = "march", configs[1].params.directions = 8, configs[1].params.radius = 7.5;
+  configs[2].method = "sweep", configs[2].params.directions = 32, configs[2].params.samples = 64;
+  for (auto& c : configs) c.params.curvature = "off";
+  const auto results = run_bench(t, configs, ref, 1, nullptr);
+  const nlohmann::json j = bench_to_json("pit.tif", ref, results);
+  ASSERT_EQ(j["results"].size(), 3u);
+  EXPECT_EQ(j["results"][0]["radius_m"], 500.0);
+  EXPECT_EQ(j["results"][1]["radius_m"], 7.5);
+  EXPECT_TRUE(j["results"][2]["radius_m"].is_null());
+  EXPECT_EQ(j["results"][0]["reference_limited"], false) << "as many directions: the method's own error";
+  EXPECT_EQ(j["results"][1]["reference_limited"], false);
+  EXPECT_EQ(j["results"][2]["reference_limited"], true);
+  EXPECT_LT(j["results"][0]["svf"]["max_abs"].get<double>(), 0.01) << "the march on the reference's surface";
+  const std::string md = bench_to_markdown("pit.tif", ref, results);
+  EXPECT_NE(md.find("| sweep d=32 near=64 † |"), std::string::npos) << md;
+  EXPECT_EQ(md.find("| march d=16 r=500 † |"), std::string::npos) << md;
+}
 
 TEST(ErrorStats, KnownErrors) {
   const KnownErrors k;
