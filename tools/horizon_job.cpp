@@ -134,6 +134,11 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   m["CITATION"] = std::string(job.engine->citation());
   for (const auto& [k, v] : job.engine->describe()) m[k] = v;
   m["EDGE_MODE"] = o.edge;
+  // What ran, not what was asked: auto resolves on the raster's extent and the radius.
+  const bool curved = job.engine->curvature_coefficient(job.terrain) > 0.0;
+  m["CURVATURE"] = std::string(curved ? "on" : "off") + (job.engine->params().curvature == "auto" ? " (auto)" : "") +
+                   (job.engine->name() == "raycast" ? " (the ray cast has none)" : "");
+  if (curved) m["REFRACTION"] = number_text(job.engine->params().refraction);
   if (choice) {
     m["MAX_ERROR_REQUESTED"] = number_text(o.max_error);
     m["MAX_ERROR_CHOICE"] =

@@ -717,9 +717,11 @@ class SweepEngine final : public HorizonEngine {
             {"DIRECTIONS", std::to_string(p_.directions)},
             {"RADIUS_M", p_.radius > 0 ? number_text(p_.radius) : "unlimited"},
             {"NEAR_STEPS", p_.radius > 0 ? "all within the radius" : std::to_string(p_.samples)},
-            {"FAR_LINES", p_.radius > 0 ? "none (no hulls within a radius)" : std::to_string(p_.far_lines)},
-            {"CURVATURE", p_.curvature},
-            {"REFRACTION", number_text(p_.refraction)}};
+            {"FAR_LINES", p_.radius > 0 ? "none (no hulls within a radius)" : std::to_string(p_.far_lines)}};
+  }
+  double curvature_coefficient(const Terrain& terrain) const override {
+    const double reach = p_.radius > 0 ? p_.radius : ground_diagonal(terrain);
+    return detail::curvature_coefficient(p_, reach, terrain.frame.earth_radius());
   }
   double radius() const override { return p_.radius > 0 ? p_.radius : std::numeric_limits<double>::infinity(); }
   const HorizonParams& params() const override { return p_; }
@@ -803,9 +805,8 @@ class SweepEngine final : public HorizonEngine {
     std::vector<float> transposed;
   };
   Inputs inputs(const Terrain& terrain) const {
-    const double extent = ground_diagonal(terrain);
     Inputs in;
-    in.c = curvature_coefficient(p_, p_.radius > 0 ? p_.radius : extent, terrain.frame.earth_radius());
+    in.c = curvature_coefficient(terrain);
     const int W = terrain.width(), H = terrain.height();
     in.transposed.resize(static_cast<std::size_t>(W) * H);
     for (int r = 0; r < H; ++r) {

@@ -146,6 +146,8 @@ TEST_F(CliErrors, OutputCarriesBandsMetadataAndGeoreference) {
   EXPECT_STREQ(ds->GetRasterBand(4)->GetUnitType(), "degree");
   EXPECT_STREQ(ds->GetMetadataItem("DIRECTIONS"), "8");
   EXPECT_STREQ(ds->GetMetadataItem("METHOD"), "march");
+  EXPECT_STREQ(ds->GetMetadataItem("CURVATURE"), "off (auto)") << "a 500 m radius drops angles by < 0.01°";
+  EXPECT_EQ(ds->GetMetadataItem("REFRACTION"), nullptr);
   EXPECT_STREQ(ds->GetMetadataItem("COMPRESSION", "IMAGE_STRUCTURE"), "LZW");
   int has = 0;
   EXPECT_EQ(ds->GetRasterBand(1)->GetNoDataValue(&has), -9999.0);
@@ -157,6 +159,13 @@ TEST_F(CliErrors, OutputCarriesBandsMetadataAndGeoreference) {
   float v = 0;
   ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Read, 10, 10, 1, 1, &v, 1, 1, GDT_Float32, 0, 0), CE_None);
   EXPECT_NEAR(v, 0.5, 0.05);
+  // Auto is recorded as what it resolved to: on for a 5 km radius (0.02° at its end).
+  const std::string far = dir + "/far.tif";
+  ASSERT_EQ(run_skyview("svf " + good + " " + far + " --directions 8 --method march --radius 5000", dir).exit_code, 0);
+  GDALDatasetUniquePtr curved(GDALDataset::Open(far.c_str(), GDAL_OF_RASTER));
+  ASSERT_TRUE(curved);
+  EXPECT_STREQ(curved->GetMetadataItem("CURVATURE"), "on (auto)");
+  EXPECT_STREQ(curved->GetMetadataItem("REFRACTION"), "0.13");
 }
 
 TEST_F(CliErrors, HorizonBandsNameTheirAzimuths) {
