@@ -150,30 +150,27 @@ void horn_slope_aspect(const Terrain& t, int col, int row, double& slope, double
   // Horn (1981) weights three differences 1:2:1 across the centre line. Where a neighbour is
   // missing (raster edge, nodata) a difference falls back to one side, or drops out and the others
   // carry its weight: substituting the centre's height instead would halve the slope on a plane.
-  auto derivative = [&](bool along_cols) {
+  auto derivative = [&](int ac, int ar) {  // along the pixel step (ac, ar); across is (ar, ac)
     double sum = 0, weight = 0;
-    for (int across = -1; across <= 1; ++across) {
-      auto at = [&](int along) { return along_cols ? std::pair{along, across} : std::pair{across, along}; };
-      auto [mc, mr] = at(-1);
-      auto [oc, orow] = at(0);
-      auto [pc, pr] = at(1);
-      const bool minus = has(mc, mr), centre = has(oc, orow), plus = has(pc, pr);
+    for (int k = -1; k <= 1; ++k) {
+      const int oc = k * ar, orow = k * ac;  // this line's cell on the centre line
+      const bool minus = has(oc - ac, orow - ar), centre = has(oc, orow), plus = has(oc + ac, orow + ar);
       double d;
       if (minus && plus)
-        d = (z(pc, pr) - z(mc, mr)) / 2.0;
+        d = (z(oc + ac, orow + ar) - z(oc - ac, orow - ar)) / 2.0;
       else if (centre && plus)
-        d = z(pc, pr) - z(oc, orow);
+        d = z(oc + ac, orow + ar) - z(oc, orow);
       else if (centre && minus)
-        d = z(oc, orow) - z(mc, mr);
+        d = z(oc, orow) - z(oc - ac, orow - ar);
       else
         continue;
-      const double w = across == 0 ? 2.0 : 1.0;
+      const double w = k == 0 ? 2.0 : 1.0;
       sum += w * d, weight += w;
     }
     return weight > 0 ? sum / weight : 0.0;
   };
-  const double dz_dcol = derivative(true);
-  const double dz_drow = derivative(false);
+  const double dz_dcol = derivative(1, 0);
+  const double dz_drow = derivative(0, 1);
   // Pixel-space gradient = J^T * ground gradient; solve for the east/north gradient.
   const Jacobian j = t.frame.at(col + t.origin_col, row + t.origin_row);
   const double det = j.a * j.d - j.b * j.c;

@@ -66,21 +66,26 @@ Terrain extend_at_raster_edges(const Terrain& t, const Window& w, Window& inner)
   };
   Terrain out;
   out.heights = Grid<float>(W + left + right, H + top + bottom);
-  for (int r = 0; r < out.height(); ++r) {
-    const int src_r = std::clamp(r - top, 0, H - 1), drow = r - top - src_r;
-    for (int c = 0; c < out.width(); ++c) {
-      const int src_c = std::clamp(c - left, 0, W - 1), dcol = c - left - src_c;
-      const float boundary = t.heights(src_c, src_r);
-      if ((dcol == 0 && drow == 0) || std::isnan(boundary)) {
-        out.heights(c, r) = boundary;
-        continue;
-      }
+  for (int r = 0; r < H; ++r) std::copy_n(&t.heights(0, r), W, &out.heights(left, r + top));
+  auto fill_ring = [&](int c, int r) {
+    const int src_c = std::clamp(c - left, 0, W - 1), src_r = std::clamp(r - top, 0, H - 1);
+    const int dcol = c - left - src_c, drow = r - top - src_r;
+    const float boundary = t.heights(src_c, src_r);
+    double z = boundary;
+    if (!std::isnan(boundary)) {
       const Jacobian j = t.frame.at(src_c + t.origin_col, src_r + t.origin_row);
-      double z = boundary;
       if (dcol != 0) z += rise(src_c, src_r, dcol, 0, std::hypot(j.a, j.c));
       if (drow != 0) z += rise(src_c, src_r, 0, drow, std::hypot(j.b, j.d));
-      out.heights(c, r) = static_cast<float>(z);
     }
+    out.heights(c, r) = static_cast<float>(z);
+  };
+  for (int c = 0; c < out.width(); ++c) {
+    if (top) fill_ring(c, 0);
+    if (bottom) fill_ring(c, out.height() - 1);
+  }
+  for (int r = top; r < top + H; ++r) {
+    if (left) fill_ring(0, r);
+    if (right) fill_ring(out.width() - 1, r);
   }
   out.base_height = t.base_height;
   out.frame = t.frame;

@@ -70,8 +70,9 @@ class HorizonEngine {
   // The parameters it runs with, the method's defaults filled in.
   virtual const HorizonParams& params() const = 0;
   // The Earth-curvature coefficient c (a target at ground distance d drops by c d²) it applies on
-  // `terrain`, with --curvature auto resolved; 0 where off or not modelled (the ray cast).
-  virtual double curvature_coefficient(const Terrain&) const { return 0.0; }
+  // `terrain`, with --curvature auto resolved on its reach (by default its radius); 0 where off or
+  // not modelled (the ray cast).
+  virtual double curvature_coefficient(const Terrain& terrain) const;
   // Fills `out` for the cells of `window`; terrain outside the window (the halo) occludes. Every
   // method reads the same surface: the buffer extended at the raster's edges
   // (extend_at_raster_edges), then its mesh over cell centres.

@@ -51,11 +51,11 @@ int halo_cells(const Terrain& terrain, double radius);
 Terrain crop_terrain(const Terrain& terrain, const Window& window, int halo, Window& inner);
 
 // The buffer grown by one cell on each side where it ends at the full raster's edge, each new cell
-// continuing its nearest boundary cell's slope outward (at most 45°; nodata stays nodata); `inner` receives `window`'s
-// position in it. The mesh over cell centres ends half a cell inside the raster's extent, so a
-// ray nearly along the boundary from a boundary cell (due north from the outer column of a UTM
-// raster, where grid north is a hair off true north) would leave it at once and miss terrain a
-// few cells ahead in the same column; on the ring it runs over the boundary cells' heights.
+// continuing its nearest boundary cell's slope outward (minmod-limited, at most 45°; nodata stays
+// nodata); `inner` receives `window`'s position in it. The mesh over cell centres ends half a cell
+// inside the raster's extent, so a ray nearly along the boundary from a boundary cell (due north
+// from the outer column of a UTM raster, where grid north is a hair off true north) would leave it
+// at once and miss terrain a few cells ahead in the same column; on the ring it runs on.
 Terrain extend_at_raster_edges(const Terrain& terrain, const Window& window, Window& inner);
 
 }  // namespace skyview

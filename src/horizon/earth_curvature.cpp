@@ -25,7 +25,7 @@ ScanSettings scan_settings(const HorizonParams& p, const Terrain& terrain) {
   s.early_exit = p.early_exit;
   s.seed = p.seed;
   s.max_distance = p.radius;
-  s.curvature = curvature_coefficient(p, p.radius, terrain.frame.earth_radius());  // as the engines record it
+  s.curvature = curvature_coefficient(p, p.radius, terrain.frame.earth_radius());
   return s;
 }
 

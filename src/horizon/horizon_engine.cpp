@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "earth_curvature.h"
 #include "methods.h"
 #include "skyview/error.h"
 
@@ -23,6 +24,10 @@ void HorizonField::resize(int c, int r, int d, bool with_lower) {
 
 double HorizonField::azimuth(std::size_t cell, int k) const {
   return sector_azimuth(k, directions) + (rotation.empty() ? 0.0 : rotation[cell]);
+}
+
+double HorizonEngine::curvature_coefficient(const Terrain& terrain) const {
+  return detail::curvature_coefficient(params(), radius(), terrain.frame.earth_radius());
 }
 
 void HorizonEngine::compute(const Terrain& terrain, const Window& window, HorizonField& out,

@@ -330,6 +330,7 @@ class RaycastEngine final : public HorizonEngine {
             {"HORIZON_PRECISION_RAD", "1e-5"}};
   }
   double radius() const override { return p_.radius == 0.0 ? std::numeric_limits<double>::infinity() : p_.radius; }
+  double curvature_coefficient(const Terrain&) const override { return 0.0; }  // none modelled
   const HorizonParams& params() const override { return p_; }
 
   void compute_window(const Terrain& terrain, const Window& window, HorizonField& out,

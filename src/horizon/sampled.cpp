@@ -56,9 +56,6 @@ class SampledEngine final : public HorizonEngine {
   }
   double radius() const override { return p_.radius; }
   const HorizonParams& params() const override { return p_; }
-  double curvature_coefficient(const Terrain& terrain) const override {
-    return detail::curvature_coefficient(p_, p_.radius, terrain.frame.earth_radius());
-  }
   void compute_window(const Terrain& terrain, const Window& window, HorizonField& out,
                       ProgressCounter& progress) const override {
     // Rays stop at the raster's edge, but the samples are spread up to the radius: with none

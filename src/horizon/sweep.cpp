@@ -720,7 +720,7 @@ class SweepEngine final : public HorizonEngine {
             {"FAR_LINES", p_.radius > 0 ? "none (no hulls within a radius)" : std::to_string(p_.far_lines)}};
   }
   double curvature_coefficient(const Terrain& terrain) const override {
-    const double reach = p_.radius > 0 ? p_.radius : ground_diagonal(terrain);
+    const double reach = p_.radius > 0 ? p_.radius : ground_diagonal(terrain);  // unlimited: the whole raster
     return detail::curvature_coefficient(p_, reach, terrain.frame.earth_radius());
   }
   double radius() const override { return p_.radius > 0 ? p_.radius : std::numeric_limits<double>::infinity(); }
