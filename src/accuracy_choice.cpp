@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 
 #include "skyview/error.h"
 
@@ -14,6 +15,22 @@ const std::vector<CalibrationEntry>& calibration_table() {
   };
   return table;
 }
+
+namespace {
+
+AccuracyChoice choice_of(const CalibrationEntry& e, const HorizonParams& base) {
+  AccuracyChoice c;
+  c.method = e.method;
+  c.entry = e;
+  c.params = base;
+  c.params.directions = e.directions;
+  c.params.samples = e.samples;
+  if (e.far_lines > 0) c.params.far_lines = e.far_lines;
+  c.params.radius = 0.0;  // each method's calibrated default
+  return c;
+}
+
+}  // namespace
 
 AccuracyChoice choose_for_max_error(double max_error, const HorizonParams& base) {
   if (!(max_error > 0.0) || max_error > 1.0) throw Error("--max-error must be above 0 and at most 1");
@@ -31,15 +48,25 @@ AccuracyChoice choose_for_max_error(double max_error, const HorizonParams& base)
                   max_error, most_accurate->method.c_str(), most_accurate->directions, most_accurate->worst_p99);
     throw Error(msg);
   }
-  AccuracyChoice c;
-  c.method = best->method;
-  c.entry = *best;
-  c.params = base;
-  c.params.directions = best->directions;
-  c.params.samples = best->samples;
-  if (best->far_lines > 0) c.params.far_lines = best->far_lines;
-  c.params.radius = 0.0;  // each method's calibrated default
-  return c;
+  return choice_of(*best, base);
+}
+
+std::optional<AccuracyChoice> choose_after_measurement(double max_error, const CalibrationEntry& tried, double measured,
+                                                       const HorizonParams& base) {
+  if (!(measured > max_error)) return std::nullopt;
+  // The raster is harder than the calibration rasters by measured / tried.worst_p99; assume the
+  // same factor for every configuration (errors of one method scale together from raster to raster).
+  const double target = tried.worst_p99 > 0.0 ? max_error * tried.worst_p99 / measured : 0.0;
+  const CalibrationEntry* best = nullptr;
+  const CalibrationEntry* most_accurate = nullptr;
+  for (const auto& e : calibration_table()) {
+    if (!(e.worst_p99 < tried.worst_p99)) continue;
+    if (!most_accurate || e.worst_p99 < most_accurate->worst_p99) most_accurate = &e;
+    if (e.worst_p99 <= target && (!best || e.ns_per_cell < best->ns_per_cell)) best = &e;
+  }
+  if (!best) best = most_accurate;
+  if (!best) return std::nullopt;
+  return choice_of(*best, base);
 }
 
 }  // namespace skyview

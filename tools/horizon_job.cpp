@@ -83,7 +83,58 @@ void check_options_apply(const HorizonJobOptions& o, const std::string& method) 
                 "--method sweep at unlimited radius" + used_by);
 }
 
+void check_edge_mode(const HorizonJob& job) {
+  if (job.edge == EdgeMode::nodata && std::isinf(job.engine->radius())) {
+    throw Error(std::string("--edge nodata blanks the cells whose search reaches the raster's edge, which with an ") +
+                (job.choice ? "unlimited radius (what --max-error chose: it sets --method, --directions, --samples, "
+                              "--far-lines and --radius) is every cell; choose the method and --radius yourself"
+                            : "unlimited radius is every cell; give --radius"));
+  }
+}
+
+// The metadata of the method that runs (and of --max-error's choice), replacing the last one's.
+void record_method(HorizonJob& job, double max_error) {
+  auto& m = job.metadata;
+  for (const std::string& key : job.method_keys) m.erase(key);
+  std::map<std::string, std::string> add = job.engine->describe();
+  add["CITATION"] = std::string(job.engine->citation());
+  // What ran, not what was asked: auto resolves on the raster's extent and the radius.
+  const bool curved = job.engine->curvature_coefficient(job.terrain) > 0.0;
+  add["CURVATURE"] = std::string(curved ? "on" : "off") + (job.engine->params().curvature == "auto" ? " (auto)" : "") +
+                     (job.engine->name() == "raycast" ? " (the ray cast has none)" : "");
+  if (curved) add["REFRACTION"] = number_text(job.engine->params().refraction);
+  if (job.choice) {
+    add["MAX_ERROR_REQUESTED"] = number_text(max_error);
+    add["MAX_ERROR_CHOICE"] = describe_choice(*job.choice);
+    add["MAX_ERROR_CALIBRATED_P99"] = number_text(job.choice->entry.worst_p99);
+    add["MAX_ERROR_BASIS"] =
+        "worst 99th-percentile |svf error| against a 64-direction ray cast over the calibration "
+        "rasters of docs/benchmarks.md";
+  }
+  job.method_keys.clear();
+  for (auto& [k, v] : add) {
+    job.method_keys.push_back(k);
+    m[k] = std::move(v);
+  }
+}
+
 }  // namespace
+
+std::string describe_choice(const AccuracyChoice& c) {
+  return c.method + " with " + std::to_string(c.entry.directions) + " directions" +
+         (c.method == "sampled" ? " and " + std::to_string(c.entry.samples) + " samples" : "") +
+         (c.method == "sweep"
+              ? ", " + std::to_string(c.entry.samples) + " exact near steps and " + std::to_string(c.entry.far_lines) +
+                    " far line" + (c.entry.far_lines == 1 ? "" : "s")
+              : "");
+}
+
+void use_choice(HorizonJob& job, const AccuracyChoice& choice, double max_error) {
+  job.choice = choice;
+  job.engine = make_horizon_engine(choice.method, choice.params);
+  check_edge_mode(job);
+  record_method(job, max_error);
+}
 
 HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& command,
                                const std::vector<std::string>& more_outputs) {
@@ -106,13 +157,9 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
     params = choice->params;
   }
   check_options_apply(o, method);
+  job.choice = choice;
   job.engine = make_horizon_engine(method, params);
-  if (job.edge == EdgeMode::nodata && std::isinf(job.engine->radius())) {
-    throw Error(std::string("--edge nodata blanks the cells whose search reaches the raster's edge, which with an ") +
-                (choice ? "unlimited radius (what --max-error chose: it sets --method, --directions, --samples, "
-                          "--far-lines and --radius) is every cell; choose the method and --radius yourself"
-                        : "unlimited radius is every cell; give --radius"));
-  }
+  check_edge_mode(job);
   job.quiet = o.out.quiet;
   ReadOptions ro;
   ro.band = o.band;
@@ -131,28 +178,8 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   m["SOURCE_BAND"] = std::to_string(o.band);
   m["Z_SCALE"] = number_text(o.z_scale);
   m["GROUND_FRAME"] = job.terrain.frame.description();
-  m["CITATION"] = std::string(job.engine->citation());
-  for (const auto& [k, v] : job.engine->describe()) m[k] = v;
   m["EDGE_MODE"] = o.edge;
-  // What ran, not what was asked: auto resolves on the raster's extent and the radius.
-  const bool curved = job.engine->curvature_coefficient(job.terrain) > 0.0;
-  m["CURVATURE"] = std::string(curved ? "on" : "off") + (job.engine->params().curvature == "auto" ? " (auto)" : "") +
-                   (job.engine->name() == "raycast" ? " (the ray cast has none)" : "");
-  if (curved) m["REFRACTION"] = number_text(job.engine->params().refraction);
-  if (choice) {
-    m["MAX_ERROR_REQUESTED"] = number_text(o.max_error);
-    m["MAX_ERROR_CHOICE"] =
-        choice->method + " with " + std::to_string(choice->entry.directions) + " directions" +
-        (choice->method == "sampled" ? " and " + std::to_string(choice->entry.samples) + " samples" : "") +
-        (choice->method == "sweep"
-             ? ", " + std::to_string(choice->entry.samples) + " exact near steps and " +
-                   std::to_string(choice->entry.far_lines) + " far line" + (choice->entry.far_lines == 1 ? "" : "s")
-             : "");
-    m["MAX_ERROR_CALIBRATED_P99"] = number_text(choice->entry.worst_p99);
-    m["MAX_ERROR_BASIS"] =
-        "worst 99th-percentile |svf error| against a 64-direction ray cast over the calibration "
-        "rasters of docs/benchmarks.md";
-  }
+  record_method(job, o.max_error);
   m["NODATA_POLICY"] = "nodata cells give nodata; nodata inside a search path does not occlude";
   m["ANGLE_CONVENTION"] = "elevation above the horizontal; azimuth clockwise from true north";
   return job;

@@ -4,10 +4,12 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "command.h"
+#include "skyview/accuracy_choice.h"
 #include "skyview/horizon_engine.h"
 #include "skyview/raster_io.h"
 #include "skyview/sky_view.h"
@@ -34,12 +36,20 @@ struct HorizonJob {
   EdgeMode edge = EdgeMode::open;
   std::map<std::string, std::string> metadata;  // run parameters for the output
   bool quiet = false;
+  std::optional<AccuracyChoice> choice;  // --max-error's, when given
+  std::vector<std::string> method_keys;  // the metadata keys that describe the method
 };
 
 // Reads the input, builds the engine and records the run's parameters; computes nothing yet.
 // `more_outputs` (a preview) are refused with the output where they would replace an input.
 HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& command,
                                const std::vector<std::string>& more_outputs = {});
+
+// "sweep with 64 directions, 16 exact near steps and 1 far line"
+std::string describe_choice(const AccuracyChoice& choice);
+
+// Runs with another of --max-error's choices from now on: its engine and its metadata.
+void use_choice(HorizonJob& job, const AccuracyChoice& choice, double max_error);
 
 // Runs `work` with progress over the job's cells on stderr (unless the job is quiet).
 void with_progress(const HorizonJob& job, const std::function<void(ProgressCounter&)>& work);

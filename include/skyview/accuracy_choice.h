@@ -2,6 +2,7 @@
 // "Ask for an accuracy, not for knobs": the cheapest calibrated method and parameters whose
 // 99th-percentile absolute svf error stayed below the request on every calibration raster.
 // The table comes from `skyview bench` runs (docs/benchmarks.md says on which rasters).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,5 +29,12 @@ struct AccuracyChoice {
 
 // Throws skyview::Error when no calibrated configuration reaches `max_error`.
 AccuracyChoice choose_for_max_error(double max_error, const HorizonParams& base);
+
+// After a run with `tried` measured a p99 of `measured` above `max_error` on the raster itself
+// (SvfCheck): the cheapest configuration whose calibrated p99, scaled by measured / tried's, is
+// within the request, else the most accurate one; nullopt when none is more accurate than `tried`
+// or the run already met the request.
+std::optional<AccuracyChoice> choose_after_measurement(double max_error, const CalibrationEntry& tried, double measured,
+                                                       const HorizonParams& base);
 
 }  // namespace skyview

@@ -38,6 +38,11 @@ struct Window {
   std::int64_t cells() const { return static_cast<std::int64_t>(cols) * rows; }
 };
 
+// One cell of a Terrain buffer.
+struct CellIndex {
+  int col = 0, row = 0;
+};
+
 // The buffer's diagonal on the ground in metres (by the Jacobian at its first cell): how far any
 // ray within it can run.
 double ground_diagonal(const Terrain& terrain);

@@ -67,6 +67,14 @@ class MarchEngine final : public HorizonEngine {
 
 }  // namespace
 
+void exact_horizons_at(const Terrain& extended, const std::vector<CellIndex>& cells, int directions, double curvature,
+                       HorizonField& out) {
+  ScanSettings s;
+  s.directions = directions;
+  s.curvature = curvature;
+  scan_cells(extended, cells, out, s, EveryCrossing{std::numeric_limits<double>::infinity()});
+}
+
 std::unique_ptr<HorizonEngine> make_march_engine(const HorizonParams& params) {
   return std::make_unique<MarchEngine>(params);
 }

@@ -92,126 +92,170 @@ struct MaxBlocks {
 // calling visit(d, 1/d, curvature*d*d) for increasing distances d <= max_distance (where the ray
 // leaves the buffer). visit returns a negative number to stop, or a distance r >= d: the walk
 // goes on with its first sample farther than r.
+// One cell's walk along every direction, with what all cells share (the direction set, the
+// raster's extremes, the pyramid) built once.
+template <class Placement>
+class RayScanner {
+ public:
+  RayScanner(const Terrain& terrain, const ScanSettings& s, const Placement& placement)
+      : terrain_(terrain), s_(s), placement_(placement), sampler_(terrain) {
+    for (float z : terrain.heights.values()) {
+      if (!std::isnan(z)) {
+        zmax_ = std::max<double>(zmax_, z);
+        zmin_ = std::min<double>(zmin_, z);
+      }
+    }
+    sin_k_.resize(s.directions);
+    cos_k_.resize(s.directions);
+    for (int k = 0; k < s.directions; ++k) {
+      sin_k_[k] = std::sin(sector_azimuth(k, s.directions));
+      cos_k_[k] = std::cos(sector_azimuth(k, s.directions));
+    }
+    // Only a placement that reads every crossing has runs of samples inside one block to skip.
+    if (s.early_exit && Placement::kDenseSteps) {
+      for (int shift : {5, 3}) {  // 32 and 8 cells
+        const int b = 1 << shift;
+        if (terrain.width() > 2 * b || terrain.height() > 2 * b) levels_.emplace_back(terrain, shift);
+      }
+    }
+  }
+
+  // The valid cell (col, row)'s horizons: direction k at up[plane * k] (and lo[plane * k] when
+  // lowest angles are asked for); its rotation of the direction set at *rotation when rotating.
+  void scan(int col, int row, float* up, float* lo, std::size_t plane, float* rotation) const {
+    const Terrain& terrain = terrain_;
+    const ScanSettings& s = s_;
+    const HeightSampler& sampler = sampler_;
+    const double sector = 2.0 * M_PI / s.directions;
+    const double c = s.curvature;
+    const bool early = s.early_exit;
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    constexpr double kTieMargin = 1e-6;  // metres
+    const double last_col = terrain.width() - 1, last_row = terrain.height() - 1;
+    const double z0 = terrain.heights(col, row);
+    const double above = zmax_ - z0;  // >= 0
+    const double below = zmin_ - z0;  // <= 0
+    double rot = 0.0;
+    if (s.rotate) {
+      rot = (cell_random(terrain.global_id(col, row), s.seed) - 0.5) * sector;
+      *rotation = static_cast<float>(rot);
+    }
+    const double sr = std::sin(rot), cr = std::cos(rot);
+    // Inverse Jacobian: metres east/north -> pixel columns/rows.
+    const Jacobian j = terrain.frame.at(col + terrain.origin_col, row + terrain.origin_row);
+    const double det = j.a * j.d - j.b * j.c;
+    const double ie_c = j.d / det, in_c = -j.b / det, ie_r = -j.c / det, in_r = j.a / det;
+    if (!s.lower) lo = nullptr;
+    for (int k = 0; k < s.directions; ++k) {
+      const double east = sin_k_[k] * cr + cos_k_[k] * sr;   // sin(az + rot)
+      const double north = cos_k_[k] * cr - sin_k_[k] * sr;  // cos(az + rot)
+      double pc = ie_c * east + in_c * north, pr = ie_r * east + in_r * north;
+      // cos(90°) is 6e-17, not 0: keep rays along a row or column on it.
+      if (std::abs(pc) < 1e-12 * std::abs(pr)) pc = 0.0;
+      if (std::abs(pr) < 1e-12 * std::abs(pc)) pr = 0.0;
+      double max_t = -std::numeric_limits<double>::infinity();
+      double min_t = std::numeric_limits<double>::infinity();
+      // Distance at which the ray leaves the buffer, so samples need no bounds check.
+      const double exit_c = pc > 0 ? (last_col - col) / pc : (pc < 0 ? -col / pc : kInf);
+      const double exit_r = pr > 0 ? (last_row - row) / pr : (pr < 0 ? -row / pr : kInf);
+      const double inv_pc = pc != 0.0 ? 1.0 / pc : 0.0, inv_pr = pr != 0.0 ? 1.0 / pr : 0.0;
+      std::size_t judged[2] = {SIZE_MAX, SIZE_MAX};  // the block of each level last judged
+      placement_.walk(pc, pr, std::min(exit_c, exit_r) * (1.0 + 1e-12), c, [&](double d, double inv_d, double drop) {
+        const double x = std::clamp(col + pc * d, 0.0, last_col), y = std::clamp(row + pr * d, 0.0, last_row);
+        const double z = sampler.at(x, y);
+        if (!std::isnan(z)) {
+          const double t = (z - z0 - drop) * inv_d;
+          max_t = std::max(max_t, t);
+          min_t = std::min(min_t, t);
+        }
+        if (early) {
+          const double bound_hi = (above - drop) * inv_d;  // decreasing in d since above >= 0
+          if (bound_hi <= max_t) {
+            if (!lo) return -1.0;
+            const double bound_lo = below * inv_d - c * s.max_distance;
+            if (bound_lo >= min_t) return -1.0;
+          }
+        }
+        // The largest block around this sample whose cells cannot beat max_t anywhere on
+        // the ray's stretch through it (curvature only lowers them further). Each block is
+        // judged once, when the ray enters it: checking every sample cost more than it saved.
+        for (std::size_t l = 0; l < levels_.size(); ++l) {
+          const MaxBlocks& level = levels_[l];
+          const int bx = static_cast<int>(x) >> level.shift;  // x <= last_col: always a block
+          const int by = static_cast<int>(y) >> level.shift;
+          const std::size_t b = static_cast<std::size_t>(by) * level.cols + bx;
+          if (b == judged[l]) continue;
+          judged[l] = b;
+          // The margin keeps a sample on the block's border, whose slope rounds differently
+          // from this bound, from tying with max_t: skipped samples stay strictly below it.
+          const double rise = level.max[b] - z0 + kTieMargin;
+          if (rise > 0 && !(rise <= max_t * d)) continue;  // cheap test before the exit distance
+          const double x0 = bx * level.size, y0 = by * level.size;
+          const double leave_c = pc > 0 ? (x0 + level.size - col) * inv_pc : (pc < 0 ? (x0 - col) * inv_pc : kInf);
+          const double leave_r = pr > 0 ? (y0 + level.size - row) * inv_pr : (pr < 0 ? (y0 - row) * inv_pr : kInf);
+          const double leave = std::min(leave_c, leave_r);
+          // rise / d' over [d, leave] peaks at d when rise > 0 and at leave otherwise.
+          if (!(rise <= max_t * (rise > 0 ? d : leave))) continue;
+          if (lo) {
+            // (fall - c d'^2) / d' has no interior minimum on [d, leave]: check both ends.
+            const double fall = level.min[b] - z0 - kTieMargin;
+            if (!(std::min(fall / d - c * d, fall / leave - c * leave) >= min_t)) continue;
+          }
+          return std::max(d, leave);
+        }
+        return d;
+      });
+      up[plane * k] = std::isinf(max_t) ? 0.0f : static_cast<float>(std::atan(max_t));
+      if (lo) lo[plane * k] = std::isinf(min_t) ? 0.0f : static_cast<float>(std::atan(min_t));
+    }
+  }
+
+ private:
+  const Terrain& terrain_;
+  ScanSettings s_;
+  Placement placement_;
+  HeightSampler sampler_;
+  double zmax_ = -std::numeric_limits<double>::infinity(), zmin_ = std::numeric_limits<double>::infinity();
+  std::vector<double> sin_k_, cos_k_;
+  std::vector<MaxBlocks> levels_;  // coarse first
+};
+
+// Every valid cell of `window`.
 template <class Placement>
 void scan_rays(const Terrain& terrain, const Window& window, HorizonField& out, ProgressCounter& progress,
                const ScanSettings& s, const Placement& placement) {
   out.resize(window.cols, window.rows, s.directions, s.lower);
   if (s.rotate) out.rotation.assign(static_cast<std::size_t>(window.cols) * window.rows, 0.0f);
-  const HeightSampler sampler(terrain);
-  double zmax = -std::numeric_limits<double>::infinity(), zmin = -zmax;
-  for (float z : terrain.heights.values()) {
-    if (!std::isnan(z)) {
-      zmax = std::max<double>(zmax, z);
-      zmin = std::min<double>(zmin, z);
-    }
-  }
-  const double sector = 2.0 * M_PI / s.directions;
-  std::vector<double> sin_k(s.directions), cos_k(s.directions);
-  for (int k = 0; k < s.directions; ++k) {
-    sin_k[k] = std::sin(sector_azimuth(k, s.directions));
-    cos_k[k] = std::cos(sector_azimuth(k, s.directions));
-  }
-  const double c = s.curvature;
-  const bool early = s.early_exit;
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  const double last_col = terrain.width() - 1, last_row = terrain.height() - 1;
-  std::vector<MaxBlocks> levels;       // coarse first
-  constexpr double kTieMargin = 1e-6;  // metres
-  // Only a placement that reads every crossing has runs of samples inside one block to skip.
-  if (early && Placement::kDenseSteps) {
-    for (int shift : {5, 3}) {  // 32 and 8 cells
-      const int b = 1 << shift;
-      if (terrain.width() > 2 * b || terrain.height() > 2 * b) levels.emplace_back(terrain, shift);
-    }
-  }
-
+  const RayScanner<Placement> scanner(terrain, s, placement);
   tbb::parallel_for(tbb::blocked_range<int>(0, window.rows), [&](const tbb::blocked_range<int>& range) {
     for (int wr = range.begin(); wr != range.end(); ++wr) {
       const int row = window.row0 + wr;
       for (int wc = 0; wc < window.cols; ++wc) {
         const int col = window.col0 + wc;
-        const std::size_t cell = out.cell(wc, wr);
         if (!terrain.valid(col, row)) continue;
-        const double z0 = terrain.heights(col, row);
-        const double above = zmax - z0;  // >= 0
-        const double below = zmin - z0;  // <= 0
-        double rot = 0.0;
-        if (s.rotate) {
-          rot = (cell_random(terrain.global_id(col, row), s.seed) - 0.5) * sector;
-          out.rotation[cell] = static_cast<float>(rot);
-        }
-        const double sr = std::sin(rot), cr = std::cos(rot);
-        // Inverse Jacobian: metres east/north -> pixel columns/rows.
-        const Jacobian j = terrain.frame.at(col + terrain.origin_col, row + terrain.origin_row);
-        const double det = j.a * j.d - j.b * j.c;
-        const double ie_c = j.d / det, in_c = -j.b / det, ie_r = -j.c / det, in_r = j.a / det;
-        float* up = out.upper.data() + cell;
-        float* lo = s.lower ? out.lower.data() + cell : nullptr;
-        const std::size_t plane = out.cells();
-        for (int k = 0; k < s.directions; ++k) {
-          const double east = sin_k[k] * cr + cos_k[k] * sr;   // sin(az + rot)
-          const double north = cos_k[k] * cr - sin_k[k] * sr;  // cos(az + rot)
-          double pc = ie_c * east + in_c * north, pr = ie_r * east + in_r * north;
-          // cos(90°) is 6e-17, not 0: keep rays along a row or column on it.
-          if (std::abs(pc) < 1e-12 * std::abs(pr)) pc = 0.0;
-          if (std::abs(pr) < 1e-12 * std::abs(pc)) pr = 0.0;
-          double max_t = -std::numeric_limits<double>::infinity();
-          double min_t = std::numeric_limits<double>::infinity();
-          // Distance at which the ray leaves the buffer, so samples need no bounds check.
-          const double exit_c = pc > 0 ? (last_col - col) / pc : (pc < 0 ? -col / pc : kInf);
-          const double exit_r = pr > 0 ? (last_row - row) / pr : (pr < 0 ? -row / pr : kInf);
-          const double inv_pc = pc != 0.0 ? 1.0 / pc : 0.0, inv_pr = pr != 0.0 ? 1.0 / pr : 0.0;
-          std::size_t judged[2] = {SIZE_MAX, SIZE_MAX};  // the block of each level last judged
-          placement.walk(pc, pr, std::min(exit_c, exit_r) * (1.0 + 1e-12), c, [&](double d, double inv_d, double drop) {
-            const double x = std::clamp(col + pc * d, 0.0, last_col), y = std::clamp(row + pr * d, 0.0, last_row);
-            const double z = sampler.at(x, y);
-            if (!std::isnan(z)) {
-              const double t = (z - z0 - drop) * inv_d;
-              max_t = std::max(max_t, t);
-              min_t = std::min(min_t, t);
-            }
-            if (early) {
-              const double bound_hi = (above - drop) * inv_d;  // decreasing in d since above >= 0
-              if (bound_hi <= max_t) {
-                if (!lo) return -1.0;
-                const double bound_lo = below * inv_d - c * s.max_distance;
-                if (bound_lo >= min_t) return -1.0;
-              }
-            }
-            // The largest block around this sample whose cells cannot beat max_t anywhere on
-            // the ray's stretch through it (curvature only lowers them further). Each block is
-            // judged once, when the ray enters it: checking every sample cost more than it saved.
-            for (std::size_t l = 0; l < levels.size(); ++l) {
-              const MaxBlocks& level = levels[l];
-              const int bx = static_cast<int>(x) >> level.shift;  // x <= last_col: always a block
-              const int by = static_cast<int>(y) >> level.shift;
-              const std::size_t b = static_cast<std::size_t>(by) * level.cols + bx;
-              if (b == judged[l]) continue;
-              judged[l] = b;
-              // The margin keeps a sample on the block's border, whose slope rounds differently
-              // from this bound, from tying with max_t: skipped samples stay strictly below it.
-              const double rise = level.max[b] - z0 + kTieMargin;
-              if (rise > 0 && !(rise <= max_t * d)) continue;  // cheap test before the exit distance
-              const double x0 = bx * level.size, y0 = by * level.size;
-              const double leave_c = pc > 0 ? (x0 + level.size - col) * inv_pc : (pc < 0 ? (x0 - col) * inv_pc : kInf);
-              const double leave_r = pr > 0 ? (y0 + level.size - row) * inv_pr : (pr < 0 ? (y0 - row) * inv_pr : kInf);
-              const double leave = std::min(leave_c, leave_r);
-              // rise / d' over [d, leave] peaks at d when rise > 0 and at leave otherwise.
-              if (!(rise <= max_t * (rise > 0 ? d : leave))) continue;
-              if (lo) {
-                // (fall - c d'^2) / d' has no interior minimum on [d, leave]: check both ends.
-                const double fall = level.min[b] - z0 - kTieMargin;
-                if (!(std::min(fall / d - c * d, fall / leave - c * leave) >= min_t)) continue;
-              }
-              return std::max(d, leave);
-            }
-            return d;
-          });
-          up[plane * k] = std::isinf(max_t) ? 0.0f : static_cast<float>(std::atan(max_t));
-          if (lo) lo[plane * k] = std::isinf(min_t) ? 0.0f : static_cast<float>(std::atan(min_t));
-        }
+        const std::size_t cell = out.cell(wc, wr);
+        scanner.scan(col, row, out.upper.data() + cell, s.lower ? out.lower.data() + cell : nullptr, out.cells(),
+                     s.rotate ? out.rotation.data() + cell : nullptr);
       }
       progress.advance(window.cols);
+    }
+  });
+}
+
+// The listed cells of the buffer, in `out` as a window of one row (cell i in column i); invalid
+// cells keep NaN.
+template <class Placement>
+void scan_cells(const Terrain& terrain, const std::vector<CellIndex>& cells, HorizonField& out, const ScanSettings& s,
+                const Placement& placement) {
+  const int n = static_cast<int>(cells.size());
+  out.resize(n, 1, s.directions, s.lower);
+  if (s.rotate) out.rotation.assign(cells.size(), 0.0f);
+  const RayScanner<Placement> scanner(terrain, s, placement);
+  tbb::parallel_for(tbb::blocked_range<int>(0, n, 8), [&](const tbb::blocked_range<int>& range) {
+    for (int i = range.begin(); i != range.end(); ++i) {
+      if (!terrain.valid(cells[i].col, cells[i].row)) continue;
+      scanner.scan(cells[i].col, cells[i].row, out.upper.data() + i, s.lower ? out.lower.data() + i : nullptr,
+                   out.cells(), s.rotate ? out.rotation.data() + i : nullptr);
     }
   });
 }

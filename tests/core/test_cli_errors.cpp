@@ -8,6 +8,7 @@
 
 #include <gdal_priv.h>
 
+#include "skyview/error_stats.h"
 #include "test_support.h"
 
 using namespace skyview;
@@ -121,6 +122,65 @@ TEST_F(CliErrors, ExistingOutputIsKeptWithoutOverwrite) {
   for (const auto& e : std::filesystem::directory_iterator(dir))
     files += e.path().filename().string().find("skyview-tmp") != std::string::npos;
   EXPECT_EQ(files, 0);
+}
+
+// A 100² synthetic city is harder than the calibration rasters: --max-error 0.01's calibrated
+// choice measured p99 0.0134 over all its cells. The svf check sees it and runs a finer choice.
+TEST_F(CliErrors, MaxErrorMeasuresItsChoiceAndRunsAgainWhereTheRasterIsHarder) {
+  const std::string in = dir + "/city.tif", out = dir + "/svf.tif", unchecked = dir + "/unchecked.tif";
+  ASSERT_EQ(run_skyview("synth city --size 100 " + in, dir).exit_code, 0);
+  ASSERT_EQ(run_skyview("svf " + in + " " + out + " --max-error 0.01 --products svf", dir).exit_code, 0);
+  GDALDatasetUniquePtr ds(GDALDataset::Open(out.c_str(), GDAL_OF_RASTER));
+  ASSERT_TRUE(ds);
+  EXPECT_STREQ(ds->GetMetadataItem("SVF_CHECK_CELLS"), "1000");
+  const std::string tried = ds->GetMetadataItem("MAX_ERROR_TRIED");
+  EXPECT_NE(tried.find("; "), std::string::npos) << "ran once: " << tried;
+  EXPECT_EQ(std::string(ds->GetMetadataItem("MAX_ERROR_MET")).rfind("yes", 0), 0u);
+  EXPECT_LE(std::stod(ds->GetMetadataItem("MAX_ERROR_MEASURED_BOUND")), 0.01);
+  // Against the ray cast over every cell, the request holds.
+  const Terrain t = read_terrain(in, {});
+  HorizonParams p;
+  p.directions = 64;
+  p.rays = 0;
+  p.curvature = "off";
+  auto engine = make_horizon_engine("raycast", p);
+  HorizonField field;
+  ProgressCounter progress;
+  engine->compute(t, Window::whole(t), field, progress);
+  const Grid<float> reference = sky_view_products(t, Window::whole(t), field, engine->radius(), EdgeMode::open).svf;
+  Grid<float> svf(t.width(), t.height());
+  ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, t.width(), t.height(), svf.data(), t.width(), t.height(),
+                                           GDT_Float32, 0, 0),
+            CE_None);
+  EXPECT_LE(compare_to_reference(svf, reference).p99, 0.01);
+  // Without the check, the calibrated choice alone, which does not hold here.
+  ASSERT_EQ(
+      run_skyview("svf " + in + " " + unchecked + " --max-error 0.01 --products svf --check-cells 0", dir).exit_code,
+      0);
+  GDALDatasetUniquePtr plain(GDALDataset::Open(unchecked.c_str(), GDAL_OF_RASTER));
+  ASSERT_TRUE(plain);
+  EXPECT_EQ(plain->GetMetadataItem("SVF_CHECK_P99"), nullptr);
+  EXPECT_EQ(plain->GetMetadataItem("MAX_ERROR_TRIED"), nullptr);
+  ASSERT_EQ(plain->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, t.width(), t.height(), svf.data(), t.width(), t.height(),
+                                              GDT_Float32, 0, 0),
+            CE_None);
+  EXPECT_GT(compare_to_reference(svf, reference).p99, 0.01);
+}
+
+TEST_F(CliErrors, CheckCellsMeasuresAnyMethod) {
+  const std::string out = dir + "/svf.tif";
+  ASSERT_EQ(run_skyview("svf " + good + " " + out + " --method march --directions 8 --check-cells 200", dir).exit_code,
+            0);
+  GDALDatasetUniquePtr ds(GDALDataset::Open(out.c_str(), GDAL_OF_RASTER));
+  ASSERT_TRUE(ds);
+  EXPECT_STREQ(ds->GetMetadataItem("SVF_CHECK_CELLS"), "200");
+  EXPECT_EQ(ds->GetMetadataItem("SVF_CHECK_P99_UPPER95"), nullptr) << "200 cells bound no p99";
+  EXPECT_EQ(ds->GetMetadataItem("MAX_ERROR_MET"), nullptr);
+  // 8 directions against the check's 64: the pit's rim is round, the sectors are not.
+  const double p99 = std::stod(ds->GetMetadataItem("SVF_CHECK_P99"));
+  EXPECT_GT(p99, 0.0);
+  EXPECT_LT(p99, 0.1);
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --check-cells -5", dir), "--check-cells", 2);
 }
 
 TEST_F(CliErrors, NegativeRadiusWithTheDefaultSweep) {
