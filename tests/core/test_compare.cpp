@@ -50,6 +50,39 @@ TEST(BenchReport, NamesRadiiAndRunsFinerThanTheReference) {
   const std::string md = bench_to_markdown("pit.tif", ref, results);
   EXPECT_NE(md.find("| sweep d=32 near=64 † |"), std::string::npos) << md;
   EXPECT_EQ(md.find("| march d=16 r=500 † |"), std::string::npos) << md;
+  // Beside the reference, the near-continuous svf of 1024 sectors at (here all 225) cells: finer
+  // sectors come closer to it.
+  EXPECT_EQ(j["continuous_reference"]["sectors"], 1024);
+  EXPECT_EQ(j["continuous_reference"]["cells"], 225);
+  EXPECT_EQ(j["results"][2]["svf_continuous"]["cells"], 225);
+  EXPECT_LT(j["results"][2]["svf_continuous"]["p99_abs"].get<double>(),
+            j["results"][1]["svf_continuous"]["p99_abs"].get<double>());
+  EXPECT_NE(md.find("cont. p99"), std::string::npos) << md;
+}
+
+// The front judges by the error against the continuous svf where the bench measured it: against
+// the 64-sector ray cast, 256 directions would look no better than 64 (it is their sector error).
+TEST(BenchReport, ParetoFrontJudgesByTheContinuousErrorWhereMeasured) {
+  auto result = [](double seconds, double raycast_p99, double continuous_p99, std::int64_t continuous_cells) {
+    BenchResult r;
+    r.seconds = seconds;
+    r.svf.p99 = raycast_p99;
+    r.svf.cells = 100;
+    r.svf_continuous.p99 = continuous_p99;
+    r.svf_continuous.cells = continuous_cells;
+    return r;
+  };
+  std::vector<BenchResult> rs = {result(1, 0.001, 0.009, 1000), result(2, 0.009, 0.002, 1000),
+                                 result(3, 0.0005, 0.005, 1000)};
+  mark_pareto_front(rs);
+  EXPECT_TRUE(rs[0].pareto);
+  EXPECT_TRUE(rs[1].pareto);
+  EXPECT_FALSE(rs[2].pareto);                            // slower than rs[1] and farther from the continuous svf
+  for (BenchResult& r : rs) r.svf_continuous.cells = 0;  // not measured: by the ray cast
+  mark_pareto_front(rs);
+  EXPECT_TRUE(rs[0].pareto);
+  EXPECT_FALSE(rs[1].pareto);
+  EXPECT_TRUE(rs[2].pareto);
 }
 
 TEST(ErrorStats, KnownErrors) {
