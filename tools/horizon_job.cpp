@@ -51,8 +51,9 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
       ->capture_default_str()
       ->check(finite_number());
   app.add_option("--max-error", o.max_error,
-                 "Choose the cheapest method and parameters whose calibrated 99th-percentile svf error is below "
-                 "this; it sets --method, --directions, --samples, --far-lines and --radius, which are then refused")
+                 "Choose the cheapest method and parameters whose calibrated 99th-percentile error against the "
+                 "continuous svf (sector discretisation included) is below this; it sets --method, --directions, "
+                 "--samples, --far-lines and --radius, which are then refused")
       ->check(number_in(0.0, 1.0));
   app.add_flag("!--no-early-exit", o.params.early_exit,
                "Disable early termination (march and sampled: the max-height pyramid; sweep: skipped far-field "
@@ -108,8 +109,8 @@ void record_method(HorizonJob& job, double max_error) {
     add["MAX_ERROR_CHOICE"] = describe_choice(*job.choice);
     add["MAX_ERROR_CALIBRATED_P99"] = number_text(job.choice->entry.worst_p99);
     add["MAX_ERROR_BASIS"] =
-        "worst 99th-percentile |svf error| against a 64-direction ray cast over the calibration "
-        "rasters of docs/benchmarks.md";
+        "worst 99th-percentile |svf error| against the continuous svf (exact horizons in 1024 sectors at 1000 "
+        "random cells) over the calibration rasters of docs/benchmarks.md";
   }
   job.method_keys.clear();
   for (auto& [k, v] : add) {

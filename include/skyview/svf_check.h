@@ -21,10 +21,11 @@ struct SvfCheckOptions {
 };
 
 struct SvfCheckResult {
-  ErrorStats error;         // of svf - reference over the sampled cells where svf is valid
-  ErrorStats error_fine;    // of svf - the svf at four times the reference's sectors: near the continuous svf
-  double p99_upper95 = 0;   // one-sided 95% confidence bound of the raster's p99 (NaN: too few cells)
-  bool exhaustive = false;  // every valid cell was checked: error.p99 is the raster's own
+  ErrorStats error;             // of svf - reference over the sampled cells where svf is valid
+  ErrorStats error_fine;        // of svf - the svf at four times the reference's sectors: near the continuous svf
+  double p99_upper95 = 0;       // one-sided 95% confidence bound of the raster's p99 (NaN: too few cells)
+  double fine_p99_upper95 = 0;  // the same for error_fine: what --max-error is held to
+  bool exhaustive = false;      // every valid cell was checked: error.p99 is the raster's own
 };
 
 class SvfCheck {

@@ -135,6 +135,16 @@ TEST(SvfCheck, MeasuresErrorsAsGiven) {
   EXPECT_NEAR(r.error.p99, 0.05, 1e-6);  // 5 of 499 cells (1%) are off by 0.05
   EXPECT_NEAR(r.error.bias, (494 * 0.01 - 5 * 0.05) / 499, 1e-6);
   EXPECT_NEAR(r.p99_upper95, 0.05, 1e-6);
+  // The error against the four-times-finer sectors (what --max-error is held to) and its bound
+  // come the same way, from the finer reference.
+  for (std::size_t i = 0; i < check.cells().size(); ++i) {
+    const CellIndex c = check.cells()[i];
+    if (i != 3) svf(c.col, c.row) = static_cast<float>(check.fine_reference()[i] + (i % 100 == 7 ? 0.04 : -0.01));
+  }
+  const SvfCheckResult f = check.measure(svf);
+  EXPECT_NEAR(f.error_fine.p99, 0.04, 1e-6);
+  EXPECT_NEAR(f.fine_p99_upper95, 0.04, 1e-6);
+  EXPECT_NEAR(f.error_fine.bias, (494 * -0.01 + 5 * 0.04) / 499, 1e-6);
 }
 
 TEST(SvfCheck, ASampleOfCellsPredictsTheWholeRastersError) {
@@ -157,6 +167,7 @@ TEST(SvfCheck, ASampleOfCellsPredictsTheWholeRastersError) {
   EXPECT_EQ(all.error.cells, whole.cells);
   EXPECT_NEAR(all.error.p99, whole.p99, 2e-4);
   EXPECT_EQ(all.p99_upper95, all.error.p99);
+  EXPECT_EQ(all.fine_p99_upper95, all.error_fine.p99);
 }
 
 TEST(AccuracyChoice, AfterAMeasurementAFinerChoiceScaledByHowFarTheRasterExceeded) {
