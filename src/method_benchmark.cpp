@@ -102,31 +102,40 @@ BenchReference compute_reference(const Terrain& terrain, int directions) {
 std::vector<BenchResult> run_bench(const Terrain& terrain, const std::vector<BenchConfig>& configs,
                                    const BenchReference& reference, int repeats,
                                    const std::function<void(const BenchResult&)>& on_result) {
-  std::vector<BenchResult> results;
-  for (const BenchConfig& config : configs) {
-    auto engine = make_horizon_engine(config.method, config.params);
-    std::vector<double> times;
-    SkyViewProducts products;
-    for (int i = 0; i < std::max(1, repeats); ++i) {
+  // Rounds over every configuration, not each configuration's runs in a row: the shared machine's
+  // speed drifts by up to 2x within one bench (on Dec 3 the two-line sweeps, run first, timed 1.8x
+  // slower on city.tif than an hour before while the one-line rows after them matched), and rounds
+  // spread the drift over all configurations alike.
+  const int rounds = std::max(1, repeats);
+  std::vector<std::unique_ptr<HorizonEngine>> engines;
+  for (const BenchConfig& config : configs) engines.push_back(make_horizon_engine(config.method, config.params));
+  std::vector<BenchResult> results(configs.size());
+  std::vector<std::vector<double>> times(configs.size());
+  for (int round = 0; round < rounds; ++round) {
+    for (std::size_t i = 0; i < configs.size(); ++i) {
       HorizonField field;
       ProgressCounter progress;
       const auto t0 = std::chrono::steady_clock::now();
-      engine->compute(terrain, Window::whole(terrain), field, progress);
-      products = sky_view_products(terrain, Window::whole(terrain), field, engine->radius(), EdgeMode::open);
-      times.push_back(seconds_since(t0));
+      engines[i]->compute(terrain, Window::whole(terrain), field, progress);
+      const SkyViewProducts products =
+          sky_view_products(terrain, Window::whole(terrain), field, engines[i]->radius(), EdgeMode::open);
+      times[i].push_back(seconds_since(t0));
+      BenchResult& r = results[i];
+      if (round == 0) {  // the errors are the same every round
+        r.config = configs[i];
+        r.radius = engines[i]->radius();
+        r.svf = compare_to_reference(products.svf, reference.products.svf);
+        r.sky_visibility = compare_to_reference(products.sky_visibility, reference.products.sky_visibility);
+        if (reference.continuous) r.svf_continuous = reference.continuous->measure(products.svf).error_fine;
+      }
+      if (round == rounds - 1) {
+        std::sort(times[i].begin(), times[i].end());
+        r.seconds = times[i][times[i].size() / 2];
+        r.cell_dirs_per_second =
+            static_cast<double>(terrain.width()) * terrain.height() * configs[i].params.directions / r.seconds;
+        if (on_result) on_result(r);
+      }
     }
-    std::sort(times.begin(), times.end());
-    BenchResult r;
-    r.config = config;
-    r.seconds = times[times.size() / 2];
-    r.radius = engine->radius();
-    r.cell_dirs_per_second =
-        static_cast<double>(terrain.width()) * terrain.height() * config.params.directions / r.seconds;
-    r.svf = compare_to_reference(products.svf, reference.products.svf);
-    r.sky_visibility = compare_to_reference(products.sky_visibility, reference.products.sky_visibility);
-    if (reference.continuous) r.svf_continuous = reference.continuous->measure(products.svf).error_fine;
-    results.push_back(r);
-    if (on_result) on_result(r);
   }
   mark_pareto_front(results);
   return results;

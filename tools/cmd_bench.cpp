@@ -36,7 +36,9 @@ Runner setup(CLI::App& app) {
   app.add_option("--reference-directions", o->reference_directions, "Directions of the ray-cast reference")
       ->capture_default_str()
       ->check(CLI::Range(4, 4096));
-  app.add_option("--repeat", o->repeat, "Runs per configuration (median time)")
+  app.add_option("--repeat", o->repeat,
+                 "Runs per configuration (median time), in rounds over all configurations so that the machine's drift "
+                 "hits all alike")
       ->capture_default_str()
       ->check(CLI::Range(1, 100));
   app.add_option("-b,--band", o->band, "Input band")->capture_default_str();
@@ -77,6 +79,10 @@ Runner setup(CLI::App& app) {
     if (!o->quiet) {
       std::fprintf(stderr, "reference done in %.1f s; continuous svf at %zu cells in %.1f s\n", ref.seconds,
                    ref.continuous->cells().size(), ref.continuous->seconds());
+    }
+    if (!o->quiet) {
+      std::fprintf(stderr, "%zu configurations in %d rounds; each is listed as the last round finishes it\n",
+                   grid.size(), o->repeat);
     }
     const auto results = run_bench(terrain, grid, ref, o->repeat, [&](const BenchResult& r) {
       if (!o->quiet) {

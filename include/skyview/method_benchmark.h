@@ -63,7 +63,8 @@ BenchReference compute_reference(const Terrain& terrain, int directions);
 constexpr int kBenchContinuousCells = 1000;
 constexpr int kBenchContinuousSectors = 1024;
 
-// Runs every config `repeats` times (median time); `on_result` is called after each.
+// Runs every config `repeats` times, in rounds over all of them (median time); `on_result` is called
+// for each config as the last round finishes it.
 std::vector<BenchResult> run_bench(const Terrain& terrain, const std::vector<BenchConfig>& configs,
                                    const BenchReference& reference, int repeats,
                                    const std::function<void(const BenchResult&)>& on_result = {});
