@@ -104,8 +104,8 @@ std::vector<BenchResult> run_bench(const Terrain& terrain, const std::vector<Ben
                                    const std::function<void(const BenchResult&)>& on_result) {
   // Rounds over every configuration, not each configuration's runs in a row: the shared machine's
   // speed drifts by up to 2x within one bench (on Dec 3 the two-line sweeps, run first, timed 1.8x
-  // slower on city.tif than an hour before while the one-line rows after them matched), and rounds
-  // spread the drift over all configurations alike.
+  // slower on city.tif than in a run minutes before, while the one-line rows after them matched),
+  // and rounds spread the drift over all configurations alike.
   const int rounds = std::max(1, repeats);
   std::vector<std::unique_ptr<HorizonEngine>> engines;
   for (const BenchConfig& config : configs) engines.push_back(make_horizon_engine(config.method, config.params));
