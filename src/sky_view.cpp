@@ -81,12 +81,12 @@ struct SkySums {
 // h[0, count). The sky starts at H = max(h, t, 0), where t = atan(-tan β cos(φ - A)) is the
 // surface's own horizon; it beats the other two only on slopes facing away from the sector. One
 // sine and cosine per cell serve all three products, and the offset's cosine comes from the
-// angle-sum formula: the loop has no library call and runs as vectors (compiled for baseline
-// x86-64 and for AVX2).
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
-__attribute__((target_clones("avx2", "default")))
-#endif
-void add_sector(SkySums& sums, const Sectors& s, int k, const float* h, int count) {
+// angle-sum formula: the loop has no library call and runs as vectors. Without kTilted the
+// surface's share (a square root and an arctangent per cell, most of the loop's work) is not
+// summed: runs that write no svf_surface never read it.
+template <bool kTilted>
+__attribute__((always_inline)) inline void sector_sums(SkySums& sums, const Sectors& s, int k, const float* h,
+                                                       int count) {
   constexpr double kInvPi = 1.0 / kPi, kDegrees = 180.0 / kPi;
   const double cos_phi = s.cos_phi[k], sin_phi = s.sin_phi[k], share = s.share, half = s.half;
   for (int i = 0; i < count; ++i) {
@@ -96,22 +96,37 @@ void add_sector(SkySums& sums, const Sectors& s, int k, const float* h, int coun
     sincos_quarter(above, sin_above, cos_above);
     sums.svf[i] += sin_above * sin_above;
     sums.visibility[i] += sin_above;
-    const double cos_rel = cos_phi * sums.cos_offset[i] - sin_phi * sums.sin_offset[i];
-    const double x = -sums.tb[i] * cos_rel;  // tangent of the surface's own horizon
-    const bool surface_wins = x * cos_above > sin_above;
-    const double cos_t = 1.0 / std::sqrt(1.0 + x * x);
-    const double H = surface_wins ? detail::fast_atan(x) : above;
-    const double cH = surface_wins ? cos_t : cos_above, sH = surface_wins ? x * cos_t : sin_above;
-    sums.surface[i] += sums.cb[i] * cH * cH * share + sums.sb[i] * cos_rel * half * (0.5 * kPi - H - sH * cH) * kInvPi;
+    if constexpr (kTilted) {
+      const double cos_rel = cos_phi * sums.cos_offset[i] - sin_phi * sums.sin_offset[i];
+      const double x = -sums.tb[i] * cos_rel;  // tangent of the surface's own horizon
+      const bool surface_wins = x * cos_above > sin_above;
+      const double cos_t = 1.0 / std::sqrt(1.0 + x * x);
+      const double H = surface_wins ? detail::fast_atan(x) : above;
+      const double cH = surface_wins ? cos_t : cos_above, sH = surface_wins ? x * cos_t : sin_above;
+      sums.surface[i] +=
+          sums.cb[i] * cH * cH * share + sums.sb[i] * cos_rel * half * (0.5 * kPi - H - sH * cH) * kInvPi;
+    }
     sums.openness[i] += 90.0 - hk * kDegrees;
   }
 }
 
+// sector_sums, compiled for baseline x86-64 and for AVX2.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void add_sector(SkySums& sums, const Sectors& s, int k, const float* h, int count, bool tilted) {
+  if (tilted)
+    sector_sums<true>(sums, s, k, h, count);
+  else
+    sector_sums<false>(sums, s, k, h, count);
+}
+
 // Directions [first, first + count) of planes laid out as in HorizonField (`cells` apart; lower
-// null or likewise), for the chunk's cells from cell `c0` of the window.
+// null or likewise), for the chunk's cells from cell `c0` of the window; `tilted`: the surface's
+// share too.
 void add_planes(SkySums& sums, const Sectors& sectors, int first, int count, const float* upper, const float* lower,
-                std::size_t cells, std::size_t c0, int n) {
-  for (int k = 0; k < count; ++k) add_sector(sums, sectors, first + k, upper + cells * k + c0, n);
+                std::size_t cells, std::size_t c0, int n, bool tilted) {
+  for (int k = 0; k < count; ++k) add_sector(sums, sectors, first + k, upper + cells * k + c0, n, tilted);
   if (lower) {
     for (int k = 0; k < count; ++k) sums.add_lowest(lower + cells * k + c0, n);
   }
@@ -123,7 +138,7 @@ const SkySums& one_cell(const float* h, int n, double rotation, double slope, do
   sums.set_tilt(0, std::cos(slope), std::sin(slope), std::tan(slope), std::cos(rotation - aspect),
                 std::sin(rotation - aspect));
   sums.clear(0);
-  for (int k = 0; k < n; ++k) add_sector(sums, sectors, k, h + k, 1);
+  for (int k = 0; k < n; ++k) add_sector(sums, sectors, k, h + k, 1, true);
   return sums;
 }
 
@@ -285,7 +300,7 @@ SkyViewProducts sky_view_products(const Terrain& terrain, const Window& window, 
         sums->clear(i);
       }
       add_planes(*sums, sectors, 0, n, field.upper.data(), lower ? field.lower.data() : nullptr, field.cells(), first,
-                 count);
+                 count, true);
       for (int i = 0; i < count; ++i) {
         const Totals totals{sums->svf[i], sums->visibility[i], sums->surface[i], sums->openness[i], sums->lowest[i]};
         write_cell(terrain, window, c0 + i, wr, radius, edge, n, totals, lower, ProductSet::all(), p,
@@ -382,7 +397,7 @@ void SkyViewSums::add(int first, int count, const float* upper, const float* low
         }
         st.load(c, *chunk, i);
       }
-      add_planes(*chunk, st.sectors, first, count, upper, lower, cells, c0, n);
+      add_planes(*chunk, st.sectors, first, count, upper, lower, cells, c0, n, tilted);
       for (int i = 0; i < n; ++i) st.store(c0 + i, *chunk, i);
     }
   });
