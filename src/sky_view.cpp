@@ -344,16 +344,20 @@ struct SkyViewSums::State {
   // kSums' order is Totals' order.
   double sum(std::size_t s, std::size_t c) const { return sums[s].empty() ? 0.0 : sums[s][c]; }
   Totals totals(std::size_t c) const { return {sum(0, c), sum(1, c), sum(2, c), sum(3, c), sum(4, c)}; }
-  // Window cell c's sums to and from chunk cell i (a product not kept sums from zero, unread).
-  void load(std::size_t c, SkySums& chunk, int i) const {
-    chunk.clear(i);
+  // Window cells [c0, c0 + n)'s sums to and from the chunk's first n cells, one array at a time (a
+  // product not kept sums from zero, unread).
+  void load(std::size_t c0, int n, SkySums& chunk) const {
     for (std::size_t s = 0; s < std::size(kSums); ++s) {
-      if (!sums[s].empty()) (chunk.*kSums[s].chunk)[i] = sums[s][c];
+      double* to = chunk.*kSums[s].chunk;
+      if (sums[s].empty())
+        std::fill_n(to, n, 0.0);
+      else
+        std::copy_n(sums[s].data() + c0, n, to);
     }
   }
-  void store(std::size_t c, const SkySums& chunk, int i) {
+  void store(std::size_t c0, int n, const SkySums& chunk) {
     for (std::size_t s = 0; s < std::size(kSums); ++s) {
-      if (!sums[s].empty()) sums[s][c] = (chunk.*kSums[s].chunk)[i];
+      if (!sums[s].empty()) std::copy_n(chunk.*kSums[s].chunk, n, sums[s].data() + c0);
     }
   }
 };
@@ -385,20 +389,17 @@ void SkyViewSums::add(int first, int count, const float* upper, const float* low
     auto chunk = std::make_unique<SkySums>();
     for (std::size_t c0 = r.begin(); c0 < r.end(); c0 += kChunk) {
       const int n = static_cast<int>(std::min<std::size_t>(kChunk, r.end() - c0));
-      for (int i = 0; i < n; ++i) {
+      // The level loop (no svf_surface) reads no tilt.
+      for (int i = 0; tilted && i < n; ++i) {
         const std::size_t c = c0 + i;
-        if (tilted) {
-          const Tilt& tilt = st.tilt[c];
-          if (first == 0)
-            sector_offset(rotation.empty() ? 0.0 : rotation[c], tilt.aspect, st.cos_offset[c], st.sin_offset[c]);
-          chunk->set_tilt(i, tilt.cb, tilt.sb, tilt.tb, st.cos_offset[c], st.sin_offset[c]);
-        } else {
-          chunk->set_tilt(i, 1.0, 0.0, 0.0, 1.0, 0.0);  // a level surface: its share is unread
-        }
-        st.load(c, *chunk, i);
+        const Tilt& tilt = st.tilt[c];
+        if (first == 0)
+          sector_offset(rotation.empty() ? 0.0 : rotation[c], tilt.aspect, st.cos_offset[c], st.sin_offset[c]);
+        chunk->set_tilt(i, tilt.cb, tilt.sb, tilt.tb, st.cos_offset[c], st.sin_offset[c]);
       }
+      st.load(c0, n, *chunk);
       add_planes(*chunk, st.sectors, first, count, upper, lower, cells, c0, n, tilted);
-      for (int i = 0; i < n; ++i) st.store(c0 + i, *chunk, i);
+      st.store(c0, n, *chunk);
     }
   });
   st.next += count;
