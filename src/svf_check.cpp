@@ -46,15 +46,15 @@ double percentile99(std::vector<double> v) {
   return v[k];
 }
 
-// The one-sided 95% confidence bound of the population's p99 of |svf - reference| from the sampled
-// cells (NaN under 300 of them), or their own p99 where they are every valid cell.
-double p99_bound(const Grid<float>& svf, const std::vector<CellIndex>& cells, const std::vector<double>& reference,
-                 const ErrorStats& stats, bool exhaustive) {
+// The one-sided 95% confidence bound of the population's p99 of |value - reference| from the
+// sampled cells' values (NaN where the run left a cell nodata; no bound under 300 cells), or
+// their own p99 where they are every valid cell.
+double p99_bound(const std::vector<float>& values, const std::vector<double>& reference, const ErrorStats& stats,
+                 bool exhaustive) {
   if (exhaustive) return stats.p99;
   std::vector<double> abs_err;
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    const double v = svf(cells[i].col, cells[i].row);
-    if (!std::isnan(v)) abs_err.push_back(std::abs(v - reference[i]));
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!std::isnan(values[i])) abs_err.push_back(std::abs(values[i] - reference[i]));
   }
   const std::int64_t rank = quantile_upper_rank(static_cast<std::int64_t>(abs_err.size()), 0.99, 0.95);
   if (rank == 0) return std::numeric_limits<double>::quiet_NaN();
@@ -125,8 +125,8 @@ SvfCheckResult SvfCheck::measure(const Grid<float>& svf) const {
   r.error = compare_to_reference(values, Grid<float>(n, 1, std::move(reference)));
   r.error_fine = compare_to_reference(values, Grid<float>(n, 1, std::move(fine)));
   r.exhaustive = exhaustive_;
-  r.p99_upper95 = p99_bound(svf, cells_, reference_, r.error, exhaustive_);
-  r.fine_p99_upper95 = p99_bound(svf, cells_, fine_reference_, r.error_fine, exhaustive_);
+  r.p99_upper95 = p99_bound(values.values(), reference_, r.error, exhaustive_);
+  r.fine_p99_upper95 = p99_bound(values.values(), fine_reference_, r.error_fine, exhaustive_);
   return r;
 }
 

@@ -79,8 +79,6 @@ Runner setup(CLI::App& app) {
     if (!o->quiet) {
       std::fprintf(stderr, "reference done in %.1f s; continuous svf at %zu cells in %.1f s\n", ref.seconds,
                    ref.continuous->cells().size(), ref.continuous->seconds());
-    }
-    if (!o->quiet) {
       std::fprintf(stderr, "%zu configurations in %d rounds; each is listed as the last round finishes it\n",
                    grid.size(), o->repeat);
     }
