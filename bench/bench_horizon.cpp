@@ -69,10 +69,21 @@ void BM_March16R100NoEarlyExit(benchmark::State& s) {
   p.early_exit = false;
   run(s, "march", p);
 }
+
 // The arguments are the number of exact near steps (--samples; 64 is the default) and of far lines
-// (--far-lines; 2 is the default).
+// (--far-lines; 2 is the default). Of sixteen directions on this local grid, eight run along its
+// axes and diagonals, where the sweep pushes each cell onto its own line (no near field, no query).
 void BM_Sweep16(benchmark::State& s) {
   skyview::HorizonParams p;
+  p.samples = static_cast<int>(s.range(0));
+  p.far_lines = static_cast<int>(s.range(1));
+  run(s, "sweep", p);
+}
+// Fifteen directions: only north runs along the grid, so nearly every direction takes the general
+// path (near field and hull queries) that sixteen share with the axes' and diagonals' exact push.
+void BM_Sweep15(benchmark::State& s) {
+  skyview::HorizonParams p;
+  p.directions = 15;
   p.samples = static_cast<int>(s.range(0));
   p.far_lines = static_cast<int>(s.range(1));
   run(s, "sweep", p);
@@ -226,6 +237,7 @@ BENCHMARK(BM_Sweep16)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);
+BENCHMARK(BM_Sweep15)->Args({64, 2})->Args({16, 1})->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_Sweep16WithLower)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_SvfWhole16)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_SvfStreamed16)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
