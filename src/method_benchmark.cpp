@@ -78,9 +78,10 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
-BenchReference compute_reference(const Terrain& terrain, int directions) {
+BenchReference compute_reference(const Terrain& terrain, int directions, AzimuthOrigin origin) {
   HorizonParams p;
   p.directions = directions;
+  p.azimuth_origin = origin;
   p.rays = 0;
   p.curvature = "off";
   auto engine = make_horizon_engine("raycast", p);
@@ -92,7 +93,9 @@ BenchReference compute_reference(const Terrain& terrain, int directions) {
   ref.products = sky_view_products(terrain, Window::whole(terrain), field, engine->radius(), EdgeMode::open);
   ref.seconds = seconds_since(t0);
   ref.directions = directions;
+  ref.azimuth_origin = origin;
   SvfCheckOptions o;
+  o.azimuth_origin = origin;
   o.cells = kBenchContinuousCells;
   o.directions = kBenchContinuousSectors / 4;  // its four-times-finer sectors are the ones compared
   ref.continuous = std::make_shared<const SvfCheck>(terrain, o);
@@ -167,6 +170,7 @@ nlohmann::json bench_to_json(const std::string& raster, const BenchReference& re
   nlohmann::json j;
   j["raster"] = raster;
   j["reference"] = {{"method", "raycast"}, {"directions", ref.directions}, {"seconds", ref.seconds}};
+  j["azimuth_origin"] = ref.azimuth_origin == AzimuthOrigin::grid ? "grid" : "north";
   if (ref.continuous) {
     j["continuous_reference"] = {{"method", "march over every crossing (svf check)"},
                                  {"sectors", ref.continuous->fine_directions()},
@@ -196,7 +200,9 @@ std::string bench_to_markdown(const std::string& raster, const BenchReference& r
                               const std::vector<BenchResult>& rs) {
   std::ostringstream s;
   s << "Raster `" << raster << "`; reference: raycast, " << ref.directions << " directions (" << std::fixed
-    << std::setprecision(1) << ref.seconds << " s). Errors are value − reference over all valid cells.";
+    << std::setprecision(1) << ref.seconds << " s); first sector on "
+    << (ref.azimuth_origin == AzimuthOrigin::grid ? "grid" : "true")
+    << " north, for every row. Errors are value − reference over all valid cells.";
   if (ref.continuous) {
     s << " `cont. p99`: svf p99 against exact horizons in " << ref.continuous->fine_directions() << " sectors at "
       << ref.continuous->cells().size()

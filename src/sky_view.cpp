@@ -295,7 +295,7 @@ SkyViewProducts sky_view_products(const Terrain& terrain, const Window& window, 
       for (int i = 0; i < count; ++i) {
         const Tilt tilt = tilt_at(terrain, window.col0 + c0 + i, window.row0 + wr);
         float cos_offset, sin_offset;
-        sector_offset(field.rotation.empty() ? 0.0 : field.rotation[first + i], tilt.aspect, cos_offset, sin_offset);
+        sector_offset(field.cell_rotation(first + i), tilt.aspect, cos_offset, sin_offset);
         sums->set_tilt(i, tilt.cb, tilt.sb, tilt.tb, cos_offset, sin_offset);
         sums->clear(i);
       }
@@ -371,7 +371,7 @@ SkyViewSums::SkyViewSums(const Terrain& terrain, const Window& window, int direc
 
 SkyViewSums::~SkyViewSums() = default;
 
-void SkyViewSums::add(int first, int count, const float* upper, const float* lower,
+void SkyViewSums::add(int first, int count, const float* upper, const float* lower, double sector_rotation,
                       const std::vector<float>& rotation) {
   State& st = *s_;
   if (first != st.next || count < 1 || first + count > st.sectors.n)
@@ -391,7 +391,8 @@ void SkyViewSums::add(int first, int count, const float* upper, const float* low
           const std::size_t c = c0 + i;
           const Tilt& tilt = st.tilt[c];
           if (first == 0)
-            sector_offset(rotation.empty() ? 0.0 : rotation[c], tilt.aspect, st.cos_offset[c], st.sin_offset[c]);
+            sector_offset(sector_rotation + (rotation.empty() ? 0.0 : rotation[c]), tilt.aspect, st.cos_offset[c],
+                          st.sin_offset[c]);
           chunk->set_tilt(i, tilt.cb, tilt.sb, tilt.tb, st.cos_offset[c], st.sin_offset[c]);
         }
       }

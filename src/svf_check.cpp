@@ -96,7 +96,8 @@ SvfCheck::SvfCheck(const Terrain& terrain, const SvfCheckOptions& options)
   // under that scaling), so one walk gives both.
   constexpr int kFiner = kFinerSectors;
   HorizonField field;
-  detail::exact_horizons_at(extended, in_buffer, kFiner * directions_, options.curvature, field);
+  detail::exact_horizons_at(extended, in_buffer, kFiner * directions_, options.curvature,
+                            direction_set_rotation(options.azimuth_origin, extended), field);
   reference_.resize(cells_.size());
   fine_reference_.resize(cells_.size());
   std::vector<double> sector_error(cells_.size());

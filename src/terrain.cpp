@@ -11,6 +11,11 @@ double ground_diagonal(const Terrain& t) {
   return std::hypot(t.width() * std::hypot(j.a, j.c), t.height() * std::hypot(j.b, j.d));
 }
 
+Jacobian raster_centre_jacobian(const Terrain& t) {
+  if (t.full_width > 0 && t.full_height > 0) return t.frame.at(0.5 * t.full_width, 0.5 * t.full_height);
+  return t.frame.at(t.origin_col + 0.5 * t.width(), t.origin_row + 0.5 * t.height());
+}
+
 int halo_cells(const Terrain& t, double radius) {
   if (!std::isfinite(radius)) return std::max(t.full_width, t.full_height);
   // The smallest ground size of a pixel step anywhere bounds how many cells `radius` spans.

@@ -23,7 +23,7 @@ std::vector<std::string> split_list(const std::string& s) {
 
 Runner setup(CLI::App& app) {
   struct Options {
-    std::string input, methods = "sampled,march,sweep", out = "bench-out";
+    std::string input, methods = "sampled,march,sweep", out = "bench-out", azimuth_origin = "grid";
     int band = 1, reference_directions = 64, repeat = 3;
     double z_scale = 1.0;
     bool overwrite = false, quiet = false;
@@ -41,6 +41,11 @@ Runner setup(CLI::App& app) {
                  "hits all alike")
       ->capture_default_str()
       ->check(CLI::Range(1, 100));
+  app.add_option(
+         "--azimuth-origin", o->azimuth_origin,
+         "Centre of the first sector for the reference and every run: grid (as skyview svf by default) or north")
+      ->check(CLI::IsMember({"north", "grid"}))
+      ->capture_default_str();
   app.add_option("-b,--band", o->band, "Input band")->capture_default_str();
   app.add_option("--z-scale", o->z_scale, "Vertical unit factor to metres")->capture_default_str();
   app.add_flag("--overwrite", o->overwrite, "Replace existing result files");
@@ -52,7 +57,9 @@ Runner setup(CLI::App& app) {
   return [o] {
     ThreadLimit limit(o->threads);
     const std::vector<std::string> names{"bench.json", "bench.md", "bench.png"};
-    const auto grid = default_bench_grid(split_list(o->methods));  // bad --methods before any folder is made
+    auto grid = default_bench_grid(split_list(o->methods));  // bad --methods before any folder is made
+    const AzimuthOrigin origin = o->azimuth_origin == "grid" ? AzimuthOrigin::grid : AzimuthOrigin::north;
+    for (BenchConfig& c : grid) c.params.azimuth_origin = origin;
     int finest = 0;
     for (const BenchConfig& c : grid) finest = std::max(finest, c.params.directions);
     // A warning even under -q: it says that some of the numbers written are not what they seem.
@@ -75,7 +82,7 @@ Runner setup(CLI::App& app) {
     ro.z_scale = o->z_scale;
     const Terrain terrain = read_terrain(o->input, ro);
     if (!o->quiet) std::fprintf(stderr, "reference: raycast with %d directions...\n", o->reference_directions);
-    const BenchReference ref = compute_reference(terrain, o->reference_directions);
+    const BenchReference ref = compute_reference(terrain, o->reference_directions, origin);
     if (!o->quiet) {
       std::fprintf(stderr, "reference done in %.1f s; continuous svf at %zu cells in %.1f s\n", ref.seconds,
                    ref.continuous->cells().size(), ref.continuous->seconds());

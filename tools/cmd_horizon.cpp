@@ -11,7 +11,9 @@ namespace {
 Runner setup(CLI::App& app) {
   auto o = std::make_shared<HorizonJobOptions>();
   add_horizon_job_options(app, *o);
-  app.footer("One band per direction, in degrees above the horizontal; band k is centred on azimuth 360*k/N.");
+  app.footer(
+      "One band per direction, in degrees above the horizontal; band k is centred on azimuth 360*k/N (plus "
+      "SECTOR_ROTATION_DEG with --azimuth-origin grid; each band's AZIMUTH_DEG says where).");
   return [o, &app] {
     refuse_unused(app, "--rays", false, "skyview svf (its Monte-Carlo svf bands)");
     ThreadLimit limit(o->out.threads);
@@ -41,9 +43,11 @@ Runner setup(CLI::App& app) {
     // output's tile height so that each tile is compressed once. Memory does not grow with the
     // number of directions.
     BandWriter out(o->output, w, h, n, job.terrain.georef, wo);
+    const double rotation = direction_set_rotation(job.engine->params().azimuth_origin, job.terrain) * 180.0 / M_PI;
     for (int k = 0; k < n; ++k) {
       std::ostringstream name, az;
-      az << 360.0 * k / n;
+      const double azimuth = 360.0 * k / n + rotation;
+      az << (azimuth < 0.0 ? azimuth + 360.0 : azimuth);
       name << "horizon_azimuth_" << az.str();
       out.describe(k, {name.str(), "degree", nullptr, {{"AZIMUTH_DEG", az.str()}}});
     }

@@ -63,6 +63,7 @@ SvfCheckOptions check_options(const HorizonJob& job, int cells) {
   c.cells = cells;
   c.directions = std::max(64, job.engine->params().directions);
   c.curvature = job.engine->curvature_coefficient(job.terrain);
+  c.azimuth_origin = job.engine->params().azimuth_origin;
   return c;
 }
 
@@ -97,6 +98,7 @@ Runner setup(CLI::App& app) {
   auto preview = std::make_shared<std::string>();
   auto check_cells = std::make_shared<int>(-1);
   auto products = std::make_shared<std::string>("svf,svf_surface,sky_visibility,openness_positive,openness_negative");
+  o->azimuth_origin = "grid";  // every band sums over azimuth
   add_horizon_job_options(app, *o);
   app.add_option("--products", *products,
                  "Bands to write, in this order; without openness_negative the lowest angles are not computed "

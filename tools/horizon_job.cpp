@@ -50,6 +50,13 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
   app.add_option("--refraction", o.params.refraction, "Refraction coefficient with curvature")
       ->capture_default_str()
       ->check(finite_number());
+  app.add_option("--azimuth-origin", o.azimuth_origin,
+                 "Centre of the first sector: north (true north), or grid (grid north at the raster's centre, so that "
+                 "sectors at multiples of 45 degrees run along rows, columns and diagonals, which the sweep finds "
+                 "exactly and about three times faster; svf and openness sum over azimuth and do not depend on it "
+                 "beyond the sectors' own error)")
+      ->check(CLI::IsMember({"north", "grid"}))
+      ->capture_default_str();
   app.add_option("--max-error", o.max_error,
                  "Choose the cheapest method and parameters whose calibrated 99th-percentile error against the "
                  "continuous svf (sector discretisation included) is below this; it sets --method, --directions, "
@@ -151,9 +158,10 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   job.edge = o.edge == "nodata" ? EdgeMode::nodata : EdgeMode::open;
   std::string method = o.method;
   HorizonParams params = o.params;
+  params.azimuth_origin = o.azimuth_origin == "grid" ? AzimuthOrigin::grid : AzimuthOrigin::north;
   std::optional<AccuracyChoice> choice;
   if (o.max_error >= 0.0) {
-    choice = choose_for_max_error(o.max_error, o.params);
+    choice = choose_for_max_error(o.max_error, params);
     method = choice->method;
     params = choice->params;
   }
@@ -183,6 +191,10 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   record_method(job, o.max_error);
   m["NODATA_POLICY"] = "nodata cells give nodata; nodata inside a search path does not occlude";
   m["ANGLE_CONVENTION"] = "elevation above the horizontal; azimuth clockwise from true north";
+  const double rotation = direction_set_rotation(job.engine->params().azimuth_origin, job.terrain);
+  m["AZIMUTH_ORIGIN"] = o.azimuth_origin == "grid" ? "grid: sector 0 centred on grid north at the raster's centre"
+                                                   : "north: sector 0 centred on true north";
+  m["SECTOR_ROTATION_DEG"] = number_text(rotation * 180.0 / M_PI);
   return job;
 }
 

@@ -23,6 +23,8 @@ struct HorizonJobOptions {
   std::string method = "sweep";  // exact and the fastest for a given error (docs/benchmarks.md)
   std::string edge = "open";
   double max_error = -1.0;  // >= 0: choose method and parameters for this p99 svf error
+  // Where sector 0 points (AzimuthOrigin): each command sets its default before its options.
+  std::string azimuth_origin = "north";
   HorizonParams params;
   OutputOptions out;
   const CLI::App* app = nullptr;  // to tell options given from defaults (set by add_horizon_job_options)

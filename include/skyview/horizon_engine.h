@@ -15,8 +15,16 @@
 
 namespace skyview {
 
+// Where the direction set's first sector points. `north`: true north, so sector k is centred on
+// azimuth 360 k / N. `grid`: up the raster's columns at its centre (grid north; a UTM raster's is
+// off true north by the meridian convergence), so that the sectors at multiples of 45° run along
+// its columns, rows and (square cells) diagonals, where the sweep's lines pass through cell
+// centres and it finds the horizons exactly and about three times faster. Products summed over
+// azimuth (svf, sky visibility, openness) do not depend on the choice beyond the sectors' own error.
+enum class AzimuthOrigin { north, grid };
+
 struct HorizonParams {
-  int directions = 16;             // azimuth sectors, the first centred on north, clockwise
+  int directions = 16;             // azimuth sectors, clockwise from the first (azimuth_origin)
   int samples = 0;                 // per direction: samples (sampled, default 16), exact near
                                    // crossings before the hulls (sweep, default 64); 0 = default
   int far_lines = 2;               // sweep: lines whose hulls a cell asks beyond its near steps,
@@ -28,6 +36,7 @@ struct HorizonParams {
   int rays = 256;                  // rays per cell for Monte-Carlo estimates (raycast)
   double refraction = 0.13;        // refraction coefficient k when curvature is on
   std::string curvature = "auto";  // auto | on | off
+  AzimuthOrigin azimuth_origin = AzimuthOrigin::north;
 };
 
 // Horizons of a window of cells, one plane (window-sized, row-major) per direction: a sweep
@@ -37,6 +46,7 @@ struct HorizonField {
   int cols = 0, rows = 0, directions = 0;
   std::vector<float> upper;     // radians, [direction][cell]; NaN on nodata cells
   std::vector<float> lower;     // radians, lowest angle seen; empty unless requested
+  double sector_rotation = 0;   // azimuth of sector 0's centre (radians; HorizonParams::azimuth_origin)
   std::vector<float> rotation;  // per-cell azimuth offset of the direction set (radians); empty = 0
   // Monte-Carlo estimates some methods (raycast) give directly; empty otherwise.
   std::vector<float> svf_direct;
@@ -52,6 +62,8 @@ struct HorizonField {
   float& lower_at(std::size_t cell, int k) { return lower[cells() * k + cell]; }
   float lower_at(std::size_t cell, int k) const { return lower[cells() * k + cell]; }
   double azimuth(std::size_t cell, int k) const;  // centre azimuth of sector k for a cell
+  // The rotation of a cell's sectors from north: the field's and the cell's own.
+  double cell_rotation(std::size_t cell) const { return sector_rotation + (rotation.empty() ? 0.0 : rotation[cell]); }
 };
 
 // Receives directions [first, first + count) of a window's horizons as planes laid out as in
@@ -116,7 +128,13 @@ std::vector<std::string> horizon_method_names();
 // Throws skyview::Error for an unknown name or invalid parameters.
 std::unique_ptr<HorizonEngine> make_horizon_engine(std::string_view method, const HorizonParams& params);
 
-// Azimuth of sector k's centre (radians, clockwise from north).
+// Azimuth of sector k's centre (radians, clockwise from north) in a set whose first sector points
+// north; a rotated set adds its rotation.
 inline double sector_azimuth(int k, int directions) { return 2.0 * 3.14159265358979323846 * k / directions; }
+
+// The direction set's rotation on `terrain` (radians, clockwise from north): 0 for
+// AzimuthOrigin::north, the azimuth of grid north at the raster's centre for AzimuthOrigin::grid.
+// The same for every tile and block of a raster.
+double direction_set_rotation(AzimuthOrigin origin, const Terrain& terrain);
 
 }  // namespace skyview

@@ -45,7 +45,8 @@ struct BenchReference {
   SkyViewProducts products;
   double seconds = 0;
   int directions = 0;
-  std::shared_ptr<const SvfCheck> continuous;  // 1000 random cells at 256 and 1024 sectors
+  AzimuthOrigin azimuth_origin = AzimuthOrigin::north;  // of the reference and of every configuration
+  std::shared_ptr<const SvfCheck> continuous;           // 1000 random cells at 256 and 1024 sectors
   // A configuration with more directions than the reference is judged against a coarser one: the
   // reference's own sector error counts against it. (With as many, the two share their azimuths and
   // the difference is the method's own error, which is what those rows are read for.)
@@ -57,8 +58,8 @@ struct BenchReference {
 std::vector<BenchConfig> default_bench_grid(const std::vector<std::string>& methods);
 
 // The ray cast at `directions` over every cell, and the svf check's exact horizons at 1000 random
-// cells in 1024 sectors.
-BenchReference compute_reference(const Terrain& terrain, int directions);
+// cells in 1024 sectors; both with their first sector at `origin`, which the configurations run must share.
+BenchReference compute_reference(const Terrain& terrain, int directions, AzimuthOrigin origin = AzimuthOrigin::north);
 
 constexpr int kBenchContinuousCells = 1000;
 constexpr int kBenchContinuousSectors = 1024;

@@ -95,8 +95,10 @@ class SkyViewSums {
   SkyViewSums& operator=(const SkyViewSums&) = delete;
   // Directions [first, first + count), added in order from direction 0: their planes of horizon
   // angles (window-sized, row-major, one after another), their lowest angles likewise (or null,
-  // for every batch), and each cell's rotation of the direction set (radians; empty: none).
-  void add(int first, int count, const float* upper, const float* lower, const std::vector<float>& rotation);
+  // for every batch), and the rotation of the direction set (radians): the whole set's and each
+  // cell's own on top (empty: none), as in HorizonField.
+  void add(int first, int count, const float* upper, const float* lower, double sector_rotation,
+           const std::vector<float>& rotation);
   // The kept products (the others' grids empty); openness_negative is NaN unless lowest angles
   // were added.
   SkyViewProducts finish(double radius, EdgeMode edge) const;

@@ -9,6 +9,7 @@
 
 #include "skyview/error_stats.h"
 #include "skyview/grid.h"
+#include "skyview/horizon_engine.h"
 #include "skyview/terrain.h"
 
 namespace skyview {
@@ -17,6 +18,7 @@ struct SvfCheckOptions {
   int cells = 1000;        // cells sampled; every valid cell when the raster has no more
   int directions = 64;     // sectors of the reference (the calibration's)
   double curvature = 0.0;  // c of the drop c d² that the run applied (HorizonEngine::curvature_coefficient)
+  AzimuthOrigin azimuth_origin = AzimuthOrigin::north;  // the run's: its sectors are the reference's
   std::uint64_t seed = 1;
 };
 

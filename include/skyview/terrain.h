@@ -47,6 +47,11 @@ struct CellIndex {
 // ray within it can run.
 double ground_diagonal(const Terrain& terrain);
 
+// The ground frame at the full raster's centre (the buffer's where the full size is unknown): one
+// Jacobian that every tile and block of a raster shares, for what must not differ between them
+// (the sweep's lines, the direction set's rotation).
+Jacobian raster_centre_jacobian(const Terrain& terrain);
+
 // Cells of halo a window needs so that every sample within `radius` metres lies in the buffer.
 int halo_cells(const Terrain& terrain, double radius);
 

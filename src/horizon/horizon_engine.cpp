@@ -23,7 +23,14 @@ void HorizonField::resize(int c, int r, int d, bool with_lower) {
 }
 
 double HorizonField::azimuth(std::size_t cell, int k) const {
-  return sector_azimuth(k, directions) + (rotation.empty() ? 0.0 : rotation[cell]);
+  return sector_azimuth(k, directions) + cell_rotation(cell);
+}
+
+double direction_set_rotation(AzimuthOrigin origin, const Terrain& terrain) {
+  if (origin == AzimuthOrigin::north) return 0.0;
+  // One row up (drow = -1) moves east by -b and north by -d.
+  const Jacobian j = raster_centre_jacobian(terrain);
+  return std::atan2(-j.b, -j.d);
 }
 
 double HorizonEngine::curvature_coefficient(const Terrain& terrain) const {
@@ -34,6 +41,7 @@ void HorizonEngine::compute(const Terrain& terrain, const Window& window, Horizo
                             ProgressCounter& progress) const {
   Window inner;
   const Terrain extended = extend_at_raster_edges(terrain, window, inner);
+  out.sector_rotation = direction_set_rotation(params().azimuth_origin, extended);
   compute_window(extended, inner, out, progress);
 }
 
@@ -41,6 +49,7 @@ void HorizonEngine::compute_directions(const Terrain& terrain, const Window& win
                                        ProgressCounter& progress, const DirectionBatchSink& take) const {
   Window inner;
   const Terrain extended = extend_at_raster_edges(terrain, window, inner);
+  out.sector_rotation = direction_set_rotation(params().azimuth_origin, extended);
   compute_window_directions(extended, inner, out, progress, take);
 }
 

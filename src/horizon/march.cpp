@@ -68,10 +68,12 @@ class MarchEngine final : public HorizonEngine {
 }  // namespace
 
 void exact_horizons_at(const Terrain& extended, const std::vector<CellIndex>& cells, int directions, double curvature,
-                       HorizonField& out) {
+                       double sector_rotation, HorizonField& out) {
   ScanSettings s;
   s.directions = directions;
   s.curvature = curvature;
+  s.sector_rotation = sector_rotation;
+  out.sector_rotation = sector_rotation;
   scan_cells(extended, cells, out, s, EveryCrossing{std::numeric_limits<double>::infinity()});
 }
 

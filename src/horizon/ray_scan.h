@@ -46,7 +46,8 @@ struct ScanSettings {
   int directions = 16;
   bool lower = false;
   bool early_exit = true;
-  bool rotate = false;  // per-cell random rotation of the direction set
+  double sector_rotation = 0.0;  // of the whole direction set (direction_set_rotation), radians
+  bool rotate = false;           // per-cell random rotation of the direction set, on top
   std::uint64_t seed = 0;
   double curvature = 0.0;  // c in drop = c d^2
   double max_distance = std::numeric_limits<double>::infinity();
@@ -108,8 +109,8 @@ class RayScanner {
     sin_k_.resize(s.directions);
     cos_k_.resize(s.directions);
     for (int k = 0; k < s.directions; ++k) {
-      sin_k_[k] = std::sin(sector_azimuth(k, s.directions));
-      cos_k_[k] = std::cos(sector_azimuth(k, s.directions));
+      sin_k_[k] = std::sin(sector_azimuth(k, s.directions) + s.sector_rotation);
+      cos_k_[k] = std::cos(sector_azimuth(k, s.directions) + s.sector_rotation);
     }
     // Only a placement that reads every crossing has runs of samples inside one block to skip.
     if (s.early_exit && Placement::kDenseSteps) {

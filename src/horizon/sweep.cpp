@@ -203,7 +203,9 @@ struct SweepGeometry {
 SweepGeometry make_geometry(const Terrain& terrain, const float* transposed, double azimuth) {
   SweepGeometry g;
   const int W = terrain.width(), H = terrain.height();
-  const Jacobian j = terrain.frame.at(terrain.origin_col + 0.5 * W, terrain.origin_row + 0.5 * H);
+  // Every tile and block of a raster gets the same lines; and a direction set rotated to grid north
+  // (direction_set_rotation) puts its axes exactly on rows and columns.
+  const Jacobian j = raster_centre_jacobian(terrain);
   double pc, pr;
   j.pixel_step_for_azimuth(azimuth, pc, pr);
   const double se = std::sin(azimuth), cn = std::cos(azimuth);
@@ -214,8 +216,12 @@ SweepGeometry make_geometry(const Terrain& terrain, const float* transposed, dou
   g.k = g.by_rows ? pc / pr : pr / pc;
   // Along an axis or a diagonal of square cells, keep lines exactly on cell centres and corners:
   // a drift of 1 - 1e-16 per step would put a minor crossing a rounding error from every sample.
-  if (std::abs(g.k) < 1e-12) g.k = 0.0;
-  if (std::abs(std::abs(g.k) - 1.0) < 1e-12) g.k = std::copysign(1.0, g.k);
+  // A drift off that adds up to under 1e-4 cell over the whole raster is such a residue, not a
+  // direction (the grid diagonals of a set rotated to grid north come out 1e-9 off, from the
+  // frame's numerical Jacobian), and far below what one Jacobian for the raster already neglects.
+  const double residue = 1e-4 / std::max(1, g.major_n);
+  if (std::abs(g.k) < residue) g.k = 0.0;
+  if (std::abs(std::abs(g.k) - 1.0) < residue) g.k = std::copysign(1.0, g.k);
   g.t_major = g.by_rows ? t_row : t_col;
   g.t_minor = g.by_rows ? t_col : t_row;
   g.toward = (g.by_rows ? pr < 0 : pc < 0) ? -1 : 1;  // the viewer looks towards index 0 when -1
@@ -845,11 +851,13 @@ class SweepEngine final : public HorizonEngine {
   // advancing by columns read contiguous memory too.
   struct Inputs {
     double c;
+    double rotation;  // of the direction set
     std::vector<float> transposed;
   };
   Inputs inputs(const Terrain& terrain) const {
     Inputs in;
     in.c = curvature_coefficient(terrain);
+    in.rotation = direction_set_rotation(p_.azimuth_origin, terrain);
     const int W = terrain.width(), H = terrain.height();
     in.transposed.resize(static_cast<std::size_t>(W) * H);
     for (int r = 0; r < H; ++r) {
@@ -858,8 +866,8 @@ class SweepEngine final : public HorizonEngine {
     return in;
   }
   void sweep(const Terrain& terrain, const Inputs& in, const Window& window, int k, float* upper, float* lower) const {
-    sweep_direction(terrain, in.transposed.data(), window, sector_azimuth(k, p_.directions), in.c, p_.samples,
-                    p_.far_lines, p_.early_exit, radius(), upper, lower);
+    sweep_direction(terrain, in.transposed.data(), window, sector_azimuth(k, p_.directions) + in.rotation, in.c,
+                    p_.samples, p_.far_lines, p_.early_exit, radius(), upper, lower);
   }
 
   HorizonParams p_;

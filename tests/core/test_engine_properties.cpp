@@ -461,7 +461,7 @@ TEST(SkyViewSums, DirectionByDirectionEqualsTheWholeField) {
       ASSERT_EQ(first, handed) << "in order";
       ASSERT_NE(low, nullptr);
       handed += count;
-      sums.add(first, count, up, low, rest.rotation);
+      sums.add(first, count, up, low, rest.sector_rotation, rest.rotation);
     });
     ASSERT_EQ(handed, p.directions);
     if (std::string(method) == "sweep") {
