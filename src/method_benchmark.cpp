@@ -110,6 +110,10 @@ std::vector<BenchResult> run_bench(const Terrain& terrain, const std::vector<Ben
   // slower on city.tif than in a run minutes before, while the one-line rows after them matched),
   // and rounds spread the drift over all configurations alike.
   const int rounds = std::max(1, repeats);
+  for (const BenchConfig& config : configs) {
+    if (config.params.azimuth_origin != reference.azimuth_origin)
+      throw Error("bench: a configuration's sectors start elsewhere than the reference's (internal error)");
+  }
   std::vector<std::unique_ptr<HorizonEngine>> engines;
   for (const BenchConfig& config : configs) engines.push_back(make_horizon_engine(config.method, config.params));
   std::vector<BenchResult> results(configs.size());

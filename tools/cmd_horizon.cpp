@@ -46,7 +46,7 @@ Runner setup(CLI::App& app) {
     const double rotation = direction_set_rotation(job.engine->params().azimuth_origin, job.terrain) * 180.0 / M_PI;
     for (int k = 0; k < n; ++k) {
       std::ostringstream name, az;
-      const double azimuth = 360.0 * k / n + rotation;
+      const double azimuth = std::fmod(360.0 * k / n + rotation, 360.0);
       az << (azimuth < 0.0 ? azimuth + 360.0 : azimuth);
       name << "horizon_azimuth_" << az.str();
       out.describe(k, {name.str(), "degree", nullptr, {{"AZIMUTH_DEG", az.str()}}});

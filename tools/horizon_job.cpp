@@ -117,7 +117,7 @@ void record_method(HorizonJob& job, double max_error) {
     add["MAX_ERROR_CALIBRATED_P99"] = number_text(job.choice->entry.worst_p99);
     add["MAX_ERROR_BASIS"] =
         "worst 99th-percentile |svf error| against the continuous svf (exact horizons in 1024 sectors at 1000 "
-        "random cells) over the calibration rasters of docs/benchmarks.md";
+        "random cells) over the calibration rasters of docs/benchmarks.md, timed with sectors from grid north";
   }
   job.method_keys.clear();
   for (auto& [k, v] : add) {

@@ -59,7 +59,9 @@ class ExposureMap {
 
   // ∫ map · max(0, n·ω) dΩ (Wh/m²): the exposure of a surface with unit normal n (east, north,
   // up). With `horizon` (elevation angles in radians of n equal sectors, sector k centred on
-  // azimuth 2πk/n clockwise from north), cells whose centre lies below the horizon are left out.
+  // azimuth 2πk/n clockwise from north: horizons from a set started on grid north, which
+  // HorizonField::sector_rotation records, must be turned back first), cells whose centre lies
+  // below the horizon are left out.
   double irradiation(ExposureBand b, const Direction& normal, std::span<const float> horizon = {}) const;
 
  private:

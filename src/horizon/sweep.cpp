@@ -219,7 +219,9 @@ SweepGeometry make_geometry(const Terrain& terrain, const float* transposed, dou
   // A drift off that adds up to under 1e-4 cell over the whole raster is such a residue, not a
   // direction (the grid diagonals of a set rotated to grid north come out 1e-9 off, from the
   // frame's numerical Jacobian), and far below what one Jacobian for the raster already neglects.
-  const double residue = 1e-4 / std::max(1, g.major_n);
+  const int full_major = g.by_rows ? (terrain.full_height > 0 ? terrain.full_height : H)
+                                   : (terrain.full_width > 0 ? terrain.full_width : W);
+  const double residue = 1e-4 / std::max(1, full_major);  // the same for every tile of a raster
   if (std::abs(g.k) < residue) g.k = 0.0;
   if (std::abs(std::abs(g.k) - 1.0) < residue) g.k = std::copysign(1.0, g.k);
   g.t_major = g.by_rows ? t_row : t_col;

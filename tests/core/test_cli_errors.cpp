@@ -238,6 +238,30 @@ TEST_F(CliErrors, HorizonBandsNameTheirAzimuths) {
   EXPECT_NEAR(v, 45.0, 3.0);
 }
 
+// With the sectors started on grid north, each band is named by its true azimuth, within [0, 360)
+// (here grid north is 30° east of true north, so the last of 16 bands is at 7.5°), and the outputs
+// record the rotation; svf starts there by default, horizon on true north.
+TEST_F(CliErrors, SectorsFromGridNorthNameTheirTrueAzimuths) {
+  GeoReference g = local_grid(21, 21, 1.0);
+  const double turn = 30.0 * M_PI / 180.0;
+  g.geotransform[1] = std::cos(turn), g.geotransform[2] = -std::sin(turn);
+  g.geotransform[4] = -std::sin(turn), g.geotransform[5] = -std::cos(turn);
+  const std::string turned = dir + "/turned.tif", h = dir + "/h.tif", s = dir + "/s.tif";
+  write_terrain(turned, rasterize(circular_pit(5, 5), 21, 21, g), {});
+  ASSERT_EQ(run_skyview("horizon " + turned + " " + h + " --directions 16 --azimuth-origin grid", dir).exit_code, 0);
+  GDALDatasetUniquePtr ds(GDALDataset::Open(h.c_str(), GDAL_OF_RASTER));
+  ASSERT_EQ(ds->GetRasterCount(), 16);
+  EXPECT_STREQ(ds->GetRasterBand(1)->GetDescription(), "horizon_azimuth_30");
+  EXPECT_STREQ(ds->GetRasterBand(16)->GetDescription(), "horizon_azimuth_7.5");
+  EXPECT_STREQ(ds->GetMetadataItem("SECTOR_ROTATION_DEG"), "30");
+  ASSERT_EQ(run_skyview("svf " + turned + " " + s + " --products svf", dir).exit_code, 0);
+  GDALDatasetUniquePtr svf(GDALDataset::Open(s.c_str(), GDAL_OF_RASTER));
+  EXPECT_EQ(std::string(svf->GetMetadataItem("AZIMUTH_ORIGIN")).rfind("grid", 0), 0u);
+  ASSERT_EQ(run_skyview("horizon " + good + " " + h + " --directions 4 --overwrite", dir).exit_code, 0);
+  ds.reset(GDALDataset::Open(h.c_str(), GDAL_OF_RASTER));
+  EXPECT_EQ(std::string(ds->GetMetadataItem("AZIMUTH_ORIGIN")).rfind("north", 0), 0u);
+}
+
 // GDAL's message for a format that cannot hold the bands breaks lines; the error stays one line.
 // Formats of bytes would round svf to 0 or 1 with only a warning: they are refused first.
 TEST_F(CliErrors, FormatThatCannotHoldTheBands) {

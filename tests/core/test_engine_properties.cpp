@@ -314,17 +314,9 @@ TEST(SweepHulls, AlongAxesTheFarFieldEqualsTheMarch) {
   ASSERT_TRUE(identical(sweep, run(t, Window::whole(t), "sweep", one_line)));
   p.radius = 1000.0;
   p.samples = 0;
-  const HorizonField march = run(t, Window::whole(t), "march", p);
-  double worst = 0.0;
-  std::size_t far = 0;
-  for (std::size_t i = 0; i < sweep.upper.size(); ++i) {
-    if (std::isnan(march.upper[i])) continue;
-    worst = std::max(
-        {worst, std::abs(double(sweep.upper[i]) - march.upper[i]), std::abs(double(sweep.lower[i]) - march.lower[i])});
-    far += march.upper[i] > 0.05f;
-  }
-  EXPECT_LT(worst, 1e-5) << "radians";
-  EXPECT_GT(far, sweep.upper.size() / 10);
+  const FieldDifference d = field_difference(sweep, run(t, Window::whole(t), "march", p));
+  EXPECT_LT(d.worst, 1e-5) << "radians";
+  EXPECT_GT(d.high, sweep.upper.size() / 10);
 }
 
 // The sweep skips a far-field search where the hulls' highest points, or their envelopes (the line

@@ -2,6 +2,7 @@
 // Helpers shared by the core tests: analytic terrains, one-cell horizon runs, temp folders.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -44,6 +45,25 @@ inline CellResult run_cell(const Terrain& t, int col, int row, const std::string
   const SkyViewProducts out = sky_view_products(t, w, field, engine->radius(), EdgeMode::open);
   return {out.svf(0, 0), out.svf_surface(0, 0), out.sky_visibility(0, 0), out.openness_positive(0, 0),
           out.openness_negative(0, 0)};
+}
+
+// How two runs' horizons compare where the second (the reference) has one: the largest |difference|
+// of horizons and lowest angles (both fields must have lowest angles), the cells where only the
+// first is NaN, and how many reference horizons stand above 0.05 rad (a test needs far terrain).
+struct FieldDifference {
+  double worst = 0.0;
+  std::size_t nan_mismatches = 0, high = 0;
+};
+inline FieldDifference field_difference(const HorizonField& a, const HorizonField& reference) {
+  FieldDifference d;
+  for (std::size_t i = 0; i < reference.upper.size(); ++i) {
+    if (std::isnan(reference.upper[i])) continue;
+    d.nan_mismatches += std::isnan(a.upper[i]);
+    d.worst = std::max({d.worst, std::abs(double(a.upper[i]) - reference.upper[i]),
+                        std::abs(double(a.lower[i]) - reference.lower[i])});
+    d.high += reference.upper[i] > 0.05f;
+  }
+  return d;
 }
 
 inline std::string wkt_of(const char* user_crs) {
