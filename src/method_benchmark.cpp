@@ -174,7 +174,7 @@ nlohmann::json bench_to_json(const std::string& raster, const BenchReference& re
   nlohmann::json j;
   j["raster"] = raster;
   j["reference"] = {{"method", "raycast"}, {"directions", ref.directions}, {"seconds", ref.seconds}};
-  j["azimuth_origin"] = ref.azimuth_origin == AzimuthOrigin::grid ? "grid" : "north";
+  j["azimuth_origin"] = azimuth_origin_name(ref.azimuth_origin);
   if (ref.continuous) {
     j["continuous_reference"] = {{"method", "march over every crossing (svf check)"},
                                  {"sectors", ref.continuous->fine_directions()},

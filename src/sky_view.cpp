@@ -371,8 +371,7 @@ SkyViewSums::SkyViewSums(const Terrain& terrain, const Window& window, int direc
 
 SkyViewSums::~SkyViewSums() = default;
 
-void SkyViewSums::add(int first, int count, const float* upper, const float* lower, double sector_rotation,
-                      const std::vector<float>& rotation) {
+void SkyViewSums::add(int first, int count, const float* upper, const float* lower, const HorizonField& rotations) {
   State& st = *s_;
   if (first != st.next || count < 1 || first + count > st.sectors.n)
     throw Error("sky-view sums: directions must be added in order (internal error)");
@@ -390,9 +389,7 @@ void SkyViewSums::add(int first, int count, const float* upper, const float* low
         for (int i = 0; i < n; ++i) {
           const std::size_t c = c0 + i;
           const Tilt& tilt = st.tilt[c];
-          if (first == 0)
-            sector_offset(sector_rotation + (rotation.empty() ? 0.0 : rotation[c]), tilt.aspect, st.cos_offset[c],
-                          st.sin_offset[c]);
+          if (first == 0) sector_offset(rotations.cell_rotation(c), tilt.aspect, st.cos_offset[c], st.sin_offset[c]);
           chunk->set_tilt(i, tilt.cb, tilt.sb, tilt.tb, st.cos_offset[c], st.sin_offset[c]);
         }
       }

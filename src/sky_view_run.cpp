@@ -67,7 +67,7 @@ SkyViewProducts compute_sky_view(const HorizonEngine& engine, const Terrain& ter
   }
   SkyViewSums sums(terrain, window, n, keep);
   const DirectionBatchSink take = [&](int first, int count, const float* upper, const float* lower) {
-    sums.add(first, count, upper, lower, field.sector_rotation, field.rotation);
+    sums.add(first, count, upper, lower, field);
   };
   engine.compute_directions(terrain, window, field, progress, take);
   return sums.finish(engine.radius(), edge);

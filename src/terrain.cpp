@@ -48,8 +48,7 @@ Terrain crop_terrain(const Terrain& t, const Window& w, int halo, Window& inner)
 }
 
 Terrain extend_at_raster_edges(const Terrain& t, const Window& w, Window& inner) {
-  const int full_w = t.full_width > 0 ? t.full_width : t.width();
-  const int full_h = t.full_height > 0 ? t.full_height : t.height();
+  const int full_w = t.raster_width(), full_h = t.raster_height();
   const int left = t.origin_col == 0 ? 1 : 0, top = t.origin_row == 0 ? 1 : 0;
   const int right = t.origin_col + t.width() == full_w ? 1 : 0, bottom = t.origin_row + t.height() == full_h ? 1 : 0;
   const int W = t.width(), H = t.height();

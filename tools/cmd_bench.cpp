@@ -58,7 +58,7 @@ Runner setup(CLI::App& app) {
     ThreadLimit limit(o->threads);
     const std::vector<std::string> names{"bench.json", "bench.md", "bench.png"};
     auto grid = default_bench_grid(split_list(o->methods));  // bad --methods before any folder is made
-    const AzimuthOrigin origin = o->azimuth_origin == "grid" ? AzimuthOrigin::grid : AzimuthOrigin::north;
+    const AzimuthOrigin origin = azimuth_origin_named(o->azimuth_origin);
     for (BenchConfig& c : grid) c.params.azimuth_origin = origin;
     int finest = 0;
     for (const BenchConfig& c : grid) finest = std::max(finest, c.params.directions);

@@ -43,7 +43,7 @@ Runner setup(CLI::App& app) {
     // output's tile height so that each tile is compressed once. Memory does not grow with the
     // number of directions.
     BandWriter out(o->output, w, h, n, job.terrain.georef, wo);
-    const double rotation = direction_set_rotation(job.engine->params().azimuth_origin, job.terrain) * 180.0 / M_PI;
+    const double rotation = job.sector_rotation * 180.0 / M_PI;
     for (int k = 0; k < n; ++k) {
       std::ostringstream name, az;
       const double azimuth = std::fmod(360.0 * k / n + rotation, 360.0);

@@ -39,6 +39,7 @@ struct HorizonJob {
   std::map<std::string, std::string> metadata;  // run parameters for the output
   bool quiet = false;
   std::optional<AccuracyChoice> choice;  // --max-error's, when given
+  double sector_rotation = 0;            // of the direction set (radians; direction_set_rotation)
   std::vector<std::string> method_keys;  // the metadata keys that describe the method
 };
 

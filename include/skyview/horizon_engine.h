@@ -19,9 +19,13 @@ namespace skyview {
 // azimuth 360 k / N. `grid`: up the raster's columns at its centre (grid north; a UTM raster's is
 // off true north by the meridian convergence), so that the sectors at multiples of 45° run along
 // its columns, rows and (square cells) diagonals, where the sweep's lines pass through cell
-// centres and it finds the horizons exactly and about three times faster. Products summed over
+// centres and it finds the horizons exactly and about 2.8 times faster (docs/benchmarks.md). Products summed over
 // azimuth (svf, sky visibility, openness) do not depend on the choice beyond the sectors' own error.
 enum class AzimuthOrigin { north, grid };
+// "north" or "grid", as --azimuth-origin and the outputs' metadata spell it; the parser throws
+// skyview::Error for any other name.
+const char* azimuth_origin_name(AzimuthOrigin origin);
+AzimuthOrigin azimuth_origin_named(std::string_view name);
 
 struct HorizonParams {
   int directions = 16;             // azimuth sectors, clockwise from the first (azimuth_origin)
@@ -52,6 +56,8 @@ struct HorizonField {
   std::vector<float> svf_direct;
   std::vector<float> svf_stderr;
 
+  // Sizes the planes (NaN everywhere) and clears the per-cell extras; keeps sector_rotation, which
+  // HorizonEngine::compute sets before the method runs and the method reads.
   void resize(int c, int r, int d, bool with_lower);
   std::size_t cell(int col, int row) const { return static_cast<std::size_t>(row) * cols + col; }
   std::size_t cells() const { return static_cast<std::size_t>(cols) * rows; }

@@ -95,10 +95,9 @@ class SkyViewSums {
   SkyViewSums& operator=(const SkyViewSums&) = delete;
   // Directions [first, first + count), added in order from direction 0: their planes of horizon
   // angles (window-sized, row-major, one after another), their lowest angles likewise (or null,
-  // for every batch), and the rotation of the direction set (radians): the whole set's and each
-  // cell's own on top (empty: none), as in HorizonField.
-  void add(int first, int count, const float* upper, const float* lower, double sector_rotation,
-           const std::vector<float>& rotation);
+  // for every batch), and the field they come from, for its rotations of the direction set
+  // (HorizonField::cell_rotation; its planes are not read).
+  void add(int first, int count, const float* upper, const float* lower, const HorizonField& rotations);
   // The kept products (the others' grids empty); openness_negative is NaN unless lowest angles
   // were added.
   SkyViewProducts finish(double radius, EdgeMode edge) const;

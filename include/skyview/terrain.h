@@ -23,6 +23,9 @@ struct Terrain {
 
   int width() const { return heights.width(); }
   int height() const { return heights.height(); }
+  // The full raster's size (this buffer's where it is not known).
+  int raster_width() const { return full_width > 0 ? full_width : width(); }
+  int raster_height() const { return full_height > 0 ? full_height : height(); }
   bool valid(int col, int row) const { return !std::isnan(heights(col, row)); }
   double absolute_height(int col, int row) const { return base_height + heights(col, row); }
   // Global cell id, independent of tiling (seeds per-cell random rotations).

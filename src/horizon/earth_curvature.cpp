@@ -26,7 +26,6 @@ ScanSettings scan_settings(const HorizonParams& p, const Terrain& terrain) {
   s.seed = p.seed;
   s.max_distance = p.radius;
   s.curvature = curvature_coefficient(p, p.radius, terrain.frame.earth_radius());
-  s.sector_rotation = direction_set_rotation(p.azimuth_origin, terrain);
   return s;
 }
 

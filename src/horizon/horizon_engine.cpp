@@ -26,6 +26,14 @@ double HorizonField::azimuth(std::size_t cell, int k) const {
   return sector_azimuth(k, directions) + cell_rotation(cell);
 }
 
+const char* azimuth_origin_name(AzimuthOrigin origin) { return origin == AzimuthOrigin::grid ? "grid" : "north"; }
+
+AzimuthOrigin azimuth_origin_named(std::string_view name) {
+  if (name == "north") return AzimuthOrigin::north;
+  if (name == "grid") return AzimuthOrigin::grid;
+  throw Error("unknown azimuth origin '" + std::string(name) + "' (north, grid)");
+}
+
 double direction_set_rotation(AzimuthOrigin origin, const Terrain& terrain) {
   if (origin == AzimuthOrigin::north) return 0.0;
   // One row up (drow = -1) moves east by -b and north by -d.

@@ -72,7 +72,6 @@ void exact_horizons_at(const Terrain& extended, const std::vector<CellIndex>& ce
   ScanSettings s;
   s.directions = directions;
   s.curvature = curvature;
-  s.sector_rotation = sector_rotation;
   out.sector_rotation = sector_rotation;
   scan_cells(extended, cells, out, s, EveryCrossing{std::numeric_limits<double>::infinity()});
 }

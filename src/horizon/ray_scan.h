@@ -46,8 +46,7 @@ struct ScanSettings {
   int directions = 16;
   bool lower = false;
   bool early_exit = true;
-  double sector_rotation = 0.0;  // of the whole direction set (direction_set_rotation), radians
-  bool rotate = false;           // per-cell random rotation of the direction set, on top
+  bool rotate = false;  // per-cell random rotation of the direction set, on top of the field's
   std::uint64_t seed = 0;
   double curvature = 0.0;  // c in drop = c d^2
   double max_distance = std::numeric_limits<double>::infinity();
@@ -98,7 +97,8 @@ struct MaxBlocks {
 template <class Placement>
 class RayScanner {
  public:
-  RayScanner(const Terrain& terrain, const ScanSettings& s, const Placement& placement)
+  // `sector_rotation`: the whole set's (HorizonField::sector_rotation).
+  RayScanner(const Terrain& terrain, const ScanSettings& s, const Placement& placement, double sector_rotation)
       : terrain_(terrain), s_(s), placement_(placement), sampler_(terrain) {
     for (float z : terrain.heights.values()) {
       if (!std::isnan(z)) {
@@ -109,8 +109,8 @@ class RayScanner {
     sin_k_.resize(s.directions);
     cos_k_.resize(s.directions);
     for (int k = 0; k < s.directions; ++k) {
-      sin_k_[k] = std::sin(sector_azimuth(k, s.directions) + s.sector_rotation);
-      cos_k_[k] = std::cos(sector_azimuth(k, s.directions) + s.sector_rotation);
+      sin_k_[k] = std::sin(sector_azimuth(k, s.directions) + sector_rotation);
+      cos_k_[k] = std::cos(sector_azimuth(k, s.directions) + sector_rotation);
     }
     // Only a placement that reads every crossing has runs of samples inside one block to skip.
     if (s.early_exit && Placement::kDenseSteps) {
@@ -227,7 +227,7 @@ void scan_rays(const Terrain& terrain, const Window& window, HorizonField& out, 
                const ScanSettings& s, const Placement& placement) {
   out.resize(window.cols, window.rows, s.directions, s.lower);
   if (s.rotate) out.rotation.assign(static_cast<std::size_t>(window.cols) * window.rows, 0.0f);
-  const RayScanner<Placement> scanner(terrain, s, placement);
+  const RayScanner<Placement> scanner(terrain, s, placement, out.sector_rotation);
   tbb::parallel_for(tbb::blocked_range<int>(0, window.rows), [&](const tbb::blocked_range<int>& range) {
     for (int wr = range.begin(); wr != range.end(); ++wr) {
       const int row = window.row0 + wr;
@@ -251,7 +251,7 @@ void scan_cells(const Terrain& terrain, const std::vector<CellIndex>& cells, Hor
   const int n = static_cast<int>(cells.size());
   out.resize(n, 1, s.directions, s.lower);
   if (s.rotate) out.rotation.assign(cells.size(), 0.0f);
-  const RayScanner<Placement> scanner(terrain, s, placement);
+  const RayScanner<Placement> scanner(terrain, s, placement, out.sector_rotation);
   tbb::parallel_for(tbb::blocked_range<int>(0, n, 8), [&](const tbb::blocked_range<int>& range) {
     for (int i = range.begin(); i != range.end(); ++i) {
       if (!terrain.valid(cells[i].col, cells[i].row)) continue;

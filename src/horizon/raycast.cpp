@@ -354,10 +354,9 @@ class RaycastEngine final : public HorizonEngine {
     }
     const int n = p_.directions;
     std::vector<double> sin_k(n), cos_k(n);
-    const double rotation = direction_set_rotation(p_.azimuth_origin, terrain);
     for (int k = 0; k < n; ++k) {
-      sin_k[k] = std::sin(sector_azimuth(k, n) + rotation);
-      cos_k[k] = std::cos(sector_azimuth(k, n) + rotation);
+      sin_k[k] = std::sin(sector_azimuth(k, n) + out.sector_rotation);
+      cos_k[k] = std::cos(sector_azimuth(k, n) + out.sector_rotation);
     }
     const double range = radius();
     tbb::parallel_for(tbb::blocked_range<int>(0, window.rows), [&](const tbb::blocked_range<int>& rows) {

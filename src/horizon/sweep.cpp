@@ -219,9 +219,7 @@ SweepGeometry make_geometry(const Terrain& terrain, const float* transposed, dou
   // A drift off that adds up to under 1e-4 cell over the whole raster is such a residue, not a
   // direction (the grid diagonals of a set rotated to grid north come out 1e-9 off, from the
   // frame's numerical Jacobian), and far below what one Jacobian for the raster already neglects.
-  const int full_major = g.by_rows ? (terrain.full_height > 0 ? terrain.full_height : H)
-                                   : (terrain.full_width > 0 ? terrain.full_width : W);
-  const double residue = 1e-4 / std::max(1, full_major);  // the same for every tile of a raster
+  const double residue = 1e-4 / std::max(1, g.by_rows ? terrain.raster_height() : terrain.raster_width());
   if (std::abs(g.k) < residue) g.k = 0.0;
   if (std::abs(std::abs(g.k) - 1.0) < residue) g.k = std::copysign(1.0, g.k);
   g.t_major = g.by_rows ? t_row : t_col;
@@ -511,12 +509,12 @@ class DirectionSweep {
     for (int w = 0; w < n_walks_; ++w) {
       for (int l = 0; l <= kBand; ++l) state[w].hulls[l].clear();
     }
+    if (on_lines_) {
+      for (int step = 0; step <= last_step_; ++step) cells_on_lines(m0, steps_[static_cast<std::size_t>(step)], state);
+      return;
+    }
     BandSamples samples;
     for (int step = 0; step <= last_step_; ++step) {
-      if (on_lines_) {
-        cells_on_lines(m0, steps_[static_cast<std::size_t>(step)], state);
-        continue;
-      }
       // Samples from more than near_steps steps back join their line's hull, far to near: the
       // row crossing, then the minor grid line crossed just after it.
       if (step > near_steps_) add_samples(m0, step - near_steps_ - 1, state, samples);
@@ -784,7 +782,7 @@ class SweepEngine final : public HorizonEngine {
   void compute_window(const Terrain& terrain, const Window& window, HorizonField& out,
                       ProgressCounter& progress) const override {
     out.resize(window.cols, window.rows, p_.directions, p_.lower);
-    const Inputs in = inputs(terrain);
+    const Inputs in = inputs(terrain, out.sector_rotation);
     tbb::parallel_for(0, p_.directions, [&](int k) {
       sweep(terrain, in, window, k, out.upper_plane(k), p_.lower ? out.lower_plane(k) : nullptr);
       progress.advance(direction_share(window.cells(), k));
@@ -803,7 +801,7 @@ class SweepEngine final : public HorizonEngine {
                                  ProgressCounter& progress, const DirectionBatchSink& take) const override {
     out.resize(0, 0, p_.directions, false);
     out.cols = window.cols, out.rows = window.rows;
-    const Inputs in = inputs(terrain);
+    const Inputs in = inputs(terrain, out.sector_rotation);
     const std::size_t cells = window.cells();
     struct Planes {
       std::unique_ptr<float[]> upper, lower;
@@ -853,13 +851,13 @@ class SweepEngine final : public HorizonEngine {
   // advancing by columns read contiguous memory too.
   struct Inputs {
     double c;
-    double rotation;  // of the direction set
+    double rotation;  // of the direction set (HorizonField::sector_rotation)
     std::vector<float> transposed;
   };
-  Inputs inputs(const Terrain& terrain) const {
+  Inputs inputs(const Terrain& terrain, double rotation) const {
     Inputs in;
     in.c = curvature_coefficient(terrain);
-    in.rotation = direction_set_rotation(p_.azimuth_origin, terrain);
+    in.rotation = rotation;
     const int W = terrain.width(), H = terrain.height();
     in.transposed.resize(static_cast<std::size_t>(W) * H);
     for (int r = 0; r < H; ++r) {

@@ -52,8 +52,9 @@ TEST(AzimuthOrigin, GridTurnsTheSetByTheMeridianConvergence) {
   HorizonParams p;
   p.directions = 8;
   p.azimuth_origin = AzimuthOrigin::grid;
-  EXPECT_NEAR(run(t, "sweep", p).sector_rotation * 180.0 / M_PI, gamma, 1e-4);
-  EXPECT_NEAR(run(t, "sweep", p).azimuth(0, 2) * 180.0 / M_PI, 90.0 + gamma, 1e-4);
+  const HorizonField field = run(t, "sweep", p);
+  EXPECT_NEAR(field.sector_rotation * 180.0 / M_PI, gamma, 1e-4);
+  EXPECT_NEAR(field.azimuth(0, 2) * 180.0 / M_PI, 90.0 + gamma, 1e-4);
 }
 
 // A grid turned clockwise from north (an affine geotransform in metres: one Jacobian everywhere).
@@ -118,7 +119,7 @@ TEST(AzimuthOrigin, TheProductsTurnTheSectorsWithTheSet) {
   const Window w = Window::whole(t);
   const SkyViewProducts whole = sky_view_products(t, w, field, INFINITY, EdgeMode::open);
   SkyViewSums sums(t, w, directions);
-  for (int k = 0; k < directions; ++k) sums.add(k, 1, field.upper_plane(k), nullptr, rotation, {});
+  for (int k = 0; k < directions; ++k) sums.add(k, 1, field.upper_plane(k), nullptr, field);
   const SkyViewProducts summed = sums.finish(INFINITY, EdgeMode::open);
   std::size_t turned = 0;
   std::vector<float> h(directions);

@@ -453,7 +453,7 @@ TEST(SkyViewSums, DirectionByDirectionEqualsTheWholeField) {
       ASSERT_EQ(first, handed) << "in order";
       ASSERT_NE(low, nullptr);
       handed += count;
-      sums.add(first, count, up, low, rest.sector_rotation, rest.rotation);
+      sums.add(first, count, up, low, rest);
     });
     ASSERT_EQ(handed, p.directions);
     if (std::string(method) == "sweep") {
