@@ -103,6 +103,28 @@ TEST(HardCases, NodataHolesAndBordersStayNodataAndNeverOcclude) {
   for (const char* m : {"march", "sweep", "sweep1", "raycast", "sampled"}) expect_sane(t, horizons(t, m, 16, true), m);
 }
 
+// A ray exactly along a hole's rim, or along the open diagonal of a quad with one nodata corner,
+// runs along mesh edges that only one triangle holds, where Embree's watertight test can drop hits.
+// Without the skirt the ray cast hangs on such edges it saw nothing east along the rim (0 against
+// 0.62 rad); along the diagonal rounding put its rays on the triangles' side either way (both
+// sides tried), and the skirt is there for the same reason. Row 2 and the cells just above the
+// main diagonal are nodata; a spike 5 m high stands on row 3 and on the diagonal, nothing else rises.
+TEST(HardCases, RaysAlongAHolesRimAndAHalfQuadsDiagonalMeetTheSpikeThere) {
+  Terrain t = rasterize([](double, double) { return 0.0; }, 21, 21, local_grid(21, 21, 1.0));
+  for (int i = 0; i < 21; ++i) {
+    t.heights(i, 2) = NAN;
+    if (i >= 5 && i + 1 < 21) t.heights(i + 1, i) = NAN;
+  }
+  t.heights(15, 3) = 5.0f;
+  t.heights(14, 14) = 5.0f;
+  for (const char* m : kExactMethods) {
+    const HorizonField f = horizons(t, m, 8);
+    EXPECT_NEAR(f.upper_at(f.cell(8, 3), 2), std::atan(5.0 / 7.0), tol(m)) << m << " east along the rim";
+    EXPECT_NEAR(f.upper_at(f.cell(8, 8), 3), std::atan(5.0 / (6.0 * std::sqrt(2.0))), tol(m))
+        << m << " south-east along the half quads' diagonals";
+  }
+}
+
 TEST(HardCases, MillimetreReliefAtTheDeadSeaAndOnEverest) {
   for (double base : {-420.0, 8848.0}) {
     const std::string dir = temp_dir("mm" + std::to_string(static_cast<int>(base)));
