@@ -32,6 +32,30 @@ TEST(AccuracyChoice, PicksTheCheapestEntryWithinTheRequest) {
   EXPECT_LE(choose_for_max_error(0.05, base).entry.ns_per_cell, choose_for_max_error(0.005, base).entry.ns_per_cell);
 }
 
+// More exact near steps (or samples) along the same directions never cost accuracy: the table
+// holds no entry below one with more of them, so that a second run after a failed check never
+// trades near steps for 1000 cells' noise.
+TEST(AccuracyChoice, MoreSamplesAreNeverCalibratedLessAccurate) {
+  for (const CalibrationEntry& a : calibration_table()) {
+    for (const CalibrationEntry& b : calibration_table()) {
+      if (a.method == b.method && a.directions == b.directions && a.far_lines == b.far_lines && a.samples < b.samples) {
+        EXPECT_GE(a.worst_p99, b.worst_p99)
+            << a.method << " " << a.directions << "/" << a.samples << " against " << b.samples;
+      }
+    }
+  }
+  // The case that cost a run: after 128 directions at 32 near steps and two lines was measured
+  // 0.0051 against a request of 0.005, 16 near steps are no longer a way to do better.
+  const CalibrationEntry* tried = nullptr;
+  for (const CalibrationEntry& e : calibration_table()) {
+    if (e.method == "sweep" && e.directions == 128 && e.samples == 32 && e.far_lines == 2) tried = &e;
+  }
+  ASSERT_NE(tried, nullptr);
+  const auto next = choose_after_measurement(0.005, *tried, 0.0051, HorizonParams{});
+  ASSERT_TRUE(next.has_value());
+  EXPECT_GT(next->params.directions, 128);
+}
+
 TEST(AccuracyChoice, RefusesWhatNoConfigurationReaches) {
   double best = 1.0;
   for (const CalibrationEntry& e : calibration_table()) best = std::min(best, e.worst_p99);
