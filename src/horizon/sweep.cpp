@@ -709,19 +709,6 @@ class DirectionSweep {
   int wa_ = 0, wb_ = 0, lo_ = 0, hi_ = 0, last_step_ = -1;
 };
 
-// One direction over the whole buffer; writes the horizon angles of the window's cells into
-// `upper_plane` and, unless it is null, their lowest angles into `lower_plane` (both window-sized
-// and row-major, NaN on nodata cells).
-//
-// Parallel lines one cell apart cover the raster, sampled where they cross grid lines (each major
-// step, read linearly between neighbouring cell centres, and each minor grid line between steps,
-// read along it): the shared mesh peaks only there. A cell's own ray runs between two lines at a
-// constant offset. Its first near_steps steps are read exactly, as the march does: near terrain
-// moves the angle most, and there a line's sideways offset would look like a slope. Beyond them
-// the cell takes its tangents to the two lines' hulls; line samples join their hull only once
-// they are more than near_steps behind the current step. The near field runs in vector blocks, so
-// 64 steps cost about 15% more time than 8 at 4000 x 4000; they bring the city sample's p99 from
-// 0.009 to 0.002. With a radius there are no hulls: every crossing within it is near.
 // What a band's walk writes: its hulls and their arena (33 MB per walk at 4000 x 4000), and a
 // row-sized scratch of slopes per walk. Each worker keeps one from band to band and direction to
 // direction: a fresh arena is faulted in page by page wherever the hulls grow, and over a plane
@@ -749,6 +736,20 @@ class BandScratch {
   std::vector<float> best_;
 };
 using BandScratches = tbb::enumerable_thread_specific<BandScratch>;
+
+// One direction over the whole buffer; writes the horizon angles of the window's cells into
+// `upper_plane` and, unless it is null, their lowest angles into `lower_plane` (both window-sized
+// and row-major, NaN on nodata cells).
+//
+// Parallel lines one cell apart cover the raster, sampled where they cross grid lines (each major
+// step, read linearly between neighbouring cell centres, and each minor grid line between steps,
+// read along it): the shared mesh peaks only there. A cell's own ray runs between two lines at a
+// constant offset. Its first near_steps steps are read exactly, as the march does: near terrain
+// moves the angle most, and there a line's sideways offset would look like a slope. Beyond them
+// the cell takes its tangents to the two lines' hulls; line samples join their hull only once
+// they are more than near_steps behind the current step. The near field runs in vector blocks, so
+// 64 steps cost about 15% more time than 8 at 4000 x 4000; they bring the city sample's p99 from
+// 0.009 to 0.002. With a radius there are no hulls: every crossing within it is near.
 
 void sweep_direction(const Terrain& terrain, const float* transposed, const Window& window, double azimuth,
                      double curvature, int near_steps, int far_lines, bool early_exit, double radius,
