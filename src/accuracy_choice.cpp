@@ -1,6 +1,7 @@
 #include "skyview/accuracy_choice.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 
@@ -66,22 +67,44 @@ AccuracyChoice choose_for_max_error(double max_error, const HorizonParams& base)
   return choice_of(*best, base);
 }
 
-std::optional<AccuracyChoice> choose_after_measurement(double max_error, const CalibrationEntry& tried, double measured,
-                                                       const HorizonParams& base) {
-  if (!(measured > max_error)) return std::nullopt;
+std::optional<AccuracyChoice> choose_after_measurement(double max_error, const CalibrationEntry& tried,
+                                                       const MeasuredError& measured, const HorizonParams& base) {
+  if (!(measured.bound > max_error)) return std::nullopt;
   // The raster is harder than the calibration rasters by measured / tried.worst_p99; assume the
   // same factor for every configuration (errors of one method scale together from raster to raster).
-  const double target = tried.worst_p99 > 0.0 ? max_error * tried.worst_p99 / measured : 0.0;
-  const CalibrationEntry* best = nullptr;
-  const CalibrationEntry* most_accurate = nullptr;
-  for (const auto& e : calibration_table()) {
-    if (!(e.worst_p99 < tried.worst_p99)) continue;
-    if (!most_accurate || e.worst_p99 < most_accurate->worst_p99) most_accurate = &e;
-    if (e.worst_p99 <= target && (!best || e.ns_per_cell < best->ns_per_cell)) best = &e;
+  const double target = tried.worst_p99 > 0.0 ? max_error * tried.worst_p99 / measured.bound : 0.0;
+  // What the parts ask of the next run (no demand where a part is unknown).
+  const bool more_directions = measured.sector_p99 > 0.5 * max_error;
+  const bool better_rays = measured.method_p99 > 0.5 * max_error;
+  const bool split = !std::isnan(measured.sector_p99) && !std::isnan(measured.method_p99);
+  auto keeps_up = [&](const CalibrationEntry& e) {
+    if (!split) return true;
+    if (e.method != tried.method || e.directions < tried.directions || e.samples < tried.samples ||
+        e.far_lines < tried.far_lines)
+      return false;
+    if (more_directions && e.directions == tried.directions) return false;
+    if (better_rays && e.samples == tried.samples && e.far_lines == tried.far_lines) return false;
+    return true;
+  };
+  for (const bool parts : {true, false}) {  // by the parts, else (none fits them) by the totals alone
+    const CalibrationEntry* best = nullptr;
+    const CalibrationEntry* most_accurate = nullptr;
+    for (const auto& e : calibration_table()) {
+      if (!(e.worst_p99 < tried.worst_p99) || (parts && !keeps_up(e))) continue;
+      if (!most_accurate || e.worst_p99 < most_accurate->worst_p99) most_accurate = &e;
+      if (e.worst_p99 <= target && (!best || e.ns_per_cell < best->ns_per_cell)) best = &e;
+    }
+    if (!best) best = most_accurate;
+    if (best) return choice_of(*best, base);
   }
-  if (!best) best = most_accurate;
-  if (!best) return std::nullopt;
-  return choice_of(*best, base);
+  return std::nullopt;
+}
+
+std::optional<AccuracyChoice> choose_after_measurement(double max_error, const CalibrationEntry& tried, double measured,
+                                                       const HorizonParams& base) {
+  MeasuredError m;
+  m.bound = measured;
+  return choose_after_measurement(max_error, tried, m, base);
 }
 
 }  // namespace skyview

@@ -178,7 +178,14 @@ Runner setup(CLI::App& app) {
       job.metadata["MAX_ERROR_MET"] =
           bound > requested ? "no" : (r.exhaustive ? "yes (every valid cell checked)" : "yes (with 95% confidence)");
       job.metadata["MAX_ERROR_TRIED"] = tried;
-      const auto next = choose_after_measurement(requested, job.choice->entry, bound, job.choice->params);
+      // The parts of the error, where the check's sectors are the run's own.
+      MeasuredError measured;
+      measured.bound = bound;
+      if (check->directions() == job.choice->params.directions) {
+        measured.method_p99 = r.error.p99;
+        measured.sector_p99 = check->sector_p99();
+      }
+      const auto next = choose_after_measurement(requested, job.choice->entry, measured, job.choice->params);
       if (!next) {
         if (bound > requested) {
           std::fprintf(stderr,

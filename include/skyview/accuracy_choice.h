@@ -5,6 +5,7 @@
 // as few sectors as the run: 64 sectors alone are about 0.01 off it at p99 in cities, so a request
 // below that buys directions as well as exactness along each ray. The table comes from `skyview
 // bench` runs (docs/benchmarks.md says on which rasters).
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -34,10 +35,27 @@ struct AccuracyChoice {
 // Throws skyview::Error when no calibrated configuration reaches `max_error`.
 AccuracyChoice choose_for_max_error(double max_error, const HorizonParams& base);
 
-// After a run with `tried` measured a p99 of `measured` above `max_error` on the raster itself
-// (SvfCheck): the cheapest configuration whose calibrated p99, scaled by measured / tried's, is
-// within the request, else the most accurate one; nullopt when none is more accurate than `tried`
-// or the run already met the request.
+// What the svf check measured of a run (SvfCheck): the bound held to the request and, where the
+// check's sectors are the run's own, the error's two parts.
+struct MeasuredError {
+  double bound = 0;  // 95% bound of the p99 against the near-continuous svf
+  // p99 against exact horizons in the run's own sectors: what the method's rays miss.
+  double method_p99 = std::numeric_limits<double>::quiet_NaN();
+  // p99 of those sectors' exact svf against four times as many: what the sectors miss.
+  double sector_p99 = std::numeric_limits<double>::quiet_NaN();
+};
+
+// After a run with `tried` measured above `max_error` on the raster itself: the cheapest
+// configuration whose calibrated p99, scaled by measured / tried's, is within the request, else
+// the most accurate one; nullopt when none is more accurate than `tried` or the run already met
+// the request. Where the error's parts are known, the choice gives up none of tried's directions,
+// near steps or far lines, and adds directions where the sectors alone take over half the request,
+// near steps or a far line where the method's rays do (the calibration's totals cannot tell which
+// part a raster is hard on: near steps set the error on a 100² city of 8-18 m streets, directions on
+// the calibration rasters).
+std::optional<AccuracyChoice> choose_after_measurement(double max_error, const CalibrationEntry& tried,
+                                                       const MeasuredError& measured, const HorizonParams& base);
+// The same from the bound alone.
 std::optional<AccuracyChoice> choose_after_measurement(double max_error, const CalibrationEntry& tried, double measured,
                                                        const HorizonParams& base);
 

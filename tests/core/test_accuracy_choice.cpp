@@ -56,6 +56,46 @@ TEST(AccuracyChoice, MoreSamplesAreNeverCalibratedLessAccurate) {
   EXPECT_GT(next->params.directions, 128);
 }
 
+// A second run that knows which part of the error was too large (the check measures the error
+// along the run's own sectors apart from the sectors' own) gives up nothing of the first, and adds
+// directions for the sectors' part and near steps or a far line for the method's. On the 100²
+// city at 0.005 the totals alone took four runs: 128/32/1, 128/32/2, 256/16/1 (16 near steps fell
+// short there), 256/32/1.
+TEST(AccuracyChoice, ASecondRunAddsWhatTheMeasuredPartsAskFor) {
+  const CalibrationEntry* tried = nullptr;
+  for (const CalibrationEntry& e : calibration_table()) {
+    if (e.method == "sweep" && e.directions == 128 && e.samples == 32 && e.far_lines == 1) tried = &e;
+  }
+  ASSERT_NE(tried, nullptr);
+  auto next_for = [&](double method_p99, double sector_p99) {
+    MeasuredError m;
+    m.bound = 0.0052;
+    m.method_p99 = method_p99;
+    m.sector_p99 = sector_p99;
+    const auto next = choose_after_measurement(0.005, *tried, m, HorizonParams{});
+    EXPECT_TRUE(next.has_value());
+    if (next) {
+      EXPECT_EQ(next->method, "sweep");
+      EXPECT_GE(next->entry.directions, tried->directions);
+      EXPECT_GE(next->entry.samples, tried->samples);
+      EXPECT_GE(next->entry.far_lines, tried->far_lines);
+    }
+    return next ? next->entry : CalibrationEntry{};
+  };
+  const CalibrationEntry both = next_for(0.0045, 0.0040);  // the 100² city's first run
+  EXPECT_GT(both.directions, 128);
+  EXPECT_TRUE(both.samples > 32 || both.far_lines > 1);
+  const CalibrationEntry sectors = next_for(0.0010, 0.0045);
+  EXPECT_GT(sectors.directions, 128);
+  const CalibrationEntry rays = next_for(0.0045, 0.0010);
+  EXPECT_TRUE(rays.samples > 32 || rays.far_lines > 1);
+  // Without the parts, the totals alone: the cheapest calibrated within the scaled request, which
+  // may trade near steps for directions.
+  const auto totals = choose_after_measurement(0.005, *tried, 0.0052, HorizonParams{});
+  ASSERT_TRUE(totals.has_value());
+  EXPECT_LE(totals->entry.worst_p99, 0.005 * tried->worst_p99 / 0.0052);
+}
+
 TEST(AccuracyChoice, RefusesWhatNoConfigurationReaches) {
   double best = 1.0;
   for (const CalibrationEntry& e : calibration_table()) best = std::min(best, e.worst_p99);
