@@ -88,8 +88,9 @@ void BM_Sweep15(benchmark::State& s) {
   p.far_lines = static_cast<int>(s.range(1));
   run(s, "sweep", p);
 }
-// BM_Sweep16 as `skyview svf` runs the sweep: directions handed over one at a time into planes
-// that are reused, so no iteration faults in a fresh field (about 12% of BM_Sweep16 at 4000^2).
+// BM_Sweep16 as `skyview svf` runs the sweep: directions handed over one at a time into a few
+// planes that the run reuses (each iteration faults in about two per worker, 64 MB each at
+// 4000^2, and the workers' hull arenas), where BM_Sweep16 faults in and fills a whole 1 GB field.
 // The sink only touches each plane; the products are BM_SvfStreamed16's.
 void BM_Sweep16Streamed(benchmark::State& state) {
   const skyview::Terrain& t = city(bench_size());

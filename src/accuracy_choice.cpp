@@ -77,20 +77,23 @@ std::optional<AccuracyChoice> choose_after_measurement(double max_error, const C
   const bool more_directions = measured.sector_p99 > 0.5 * max_error;
   const bool better_rays = measured.method_p99 > 0.5 * max_error;
   const bool split = !std::isnan(measured.sector_p99) && !std::isnan(measured.method_p99);
-  auto keeps_up = [&](const CalibrationEntry& e) {
-    if (!split) return true;
+  // Pass 0: what the parts ask for; 1: giving up nothing of tried's; 2: the totals alone (each
+  // pass only where the one before it found no entry).
+  auto admits = [&](const CalibrationEntry& e, int pass) {
+    if (pass == 2) return true;
     if (e.method != tried.method || e.directions < tried.directions || e.samples < tried.samples ||
         e.far_lines < tried.far_lines)
       return false;
+    if (pass == 1) return true;
     if (more_directions && e.directions == tried.directions) return false;
     if (better_rays && e.samples == tried.samples && e.far_lines == tried.far_lines) return false;
     return true;
   };
-  for (const bool parts : {true, false}) {  // by the parts, else (none fits them) by the totals alone
+  for (int pass = split ? 0 : 2; pass <= 2; ++pass) {
     const CalibrationEntry* best = nullptr;
     const CalibrationEntry* most_accurate = nullptr;
     for (const auto& e : calibration_table()) {
-      if (!(e.worst_p99 < tried.worst_p99) || (parts && !keeps_up(e))) continue;
+      if (!(e.worst_p99 < tried.worst_p99) || !admits(e, pass)) continue;
       if (!most_accurate || e.worst_p99 < most_accurate->worst_p99) most_accurate = &e;
       if (e.worst_p99 <= target && (!best || e.ns_per_cell < best->ns_per_cell)) best = &e;
     }

@@ -50,9 +50,10 @@ struct MeasuredError {
 // the most accurate one; nullopt when none is more accurate than `tried` or the run already met
 // the request. Where the error's parts are known, the choice gives up none of tried's directions,
 // near steps or far lines, and adds directions where the sectors alone take over half the request,
-// near steps or a far line where the method's rays do (the calibration's totals cannot tell which
-// part a raster is hard on: near steps set the error on a 100² city of 8-18 m streets, directions on
-// the calibration rasters).
+// near steps or a far line where the method's rays do; where no calibrated entry does that, one
+// that gives up nothing; where none does either, the totals alone decide. (The calibration's totals
+// cannot tell which part a raster is hard on: near steps set the error on a 100² city of 8-18 m
+// streets, directions on the calibration rasters.)
 std::optional<AccuracyChoice> choose_after_measurement(double max_error, const CalibrationEntry& tried,
                                                        const MeasuredError& measured, const HorizonParams& base);
 // The same from the bound alone.

@@ -85,8 +85,10 @@ void reject_own_triangles(const RTCFilterFunctionNArguments* args) {
 // only counts hits on edges that two triangles share: without skirts a wall one cell in from the
 // raster's corner was missed (1.4 rad off), and a ray along a grid line beside a hole lost its hit
 // on the hole's rim (0.36 rad). Hanging below the edge, a skirt hides nothing from a ray that passes
-// above it (only rays within 0.06 degrees of the nadir could meet it); a deeper one (10 km) was too
-// thin for float intersections and blocked rays just above the boundary.
+// above it, but a ray that then falls steeply enough to catch up with its 1000:1 lean: within 0.06
+// degrees of the nadir across the edge, more than 10 degrees down where its course is within 0.01
+// degrees of the edge's. A deeper skirt (10 km) was too thin for float intersections and blocked
+// rays just above the boundary.
 constexpr double kSkirtOut = 0.01;  // cells
 
 struct SkirtVertex {

@@ -750,7 +750,6 @@ using BandScratches = tbb::enumerable_thread_specific<BandScratch>;
 // they are more than near_steps behind the current step. The near field runs in vector blocks, so
 // 64 steps cost about 15% more time than 8 at 4000 x 4000; they bring the city sample's p99 from
 // 0.009 to 0.002. With a radius there are no hulls: every crossing within it is near.
-
 void sweep_direction(const Terrain& terrain, const float* transposed, const Window& window, double azimuth,
                      double curvature, int near_steps, int far_lines, bool early_exit, double radius,
                      BandScratches& scratches, float* upper_plane, float* lower_plane) {

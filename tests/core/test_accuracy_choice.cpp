@@ -89,6 +89,30 @@ TEST(AccuracyChoice, ASecondRunAddsWhatTheMeasuredPartsAskFor) {
   EXPECT_GT(sectors.directions, 128);
   const CalibrationEntry rays = next_for(0.0045, 0.0010);
   EXPECT_TRUE(rays.samples > 32 || rays.far_lines > 1);
+  // Where no entry adds what the parts ask for (nothing has more near steps or far lines than
+  // 128/128/2), one that gives up nothing: the totals alone chose 256 directions at 16 near steps.
+  const CalibrationEntry* finest_rays = nullptr;
+  for (const CalibrationEntry& e : calibration_table()) {
+    if (e.method == "sweep" && e.directions == 128 && e.samples == 128 && e.far_lines == 2) finest_rays = &e;
+  }
+  ASSERT_NE(finest_rays, nullptr);
+  MeasuredError m;
+  m.bound = 0.0052;
+  m.method_p99 = 0.0040;
+  m.sector_p99 = 0.0010;
+  const auto kept = choose_after_measurement(0.005, *finest_rays, m, HorizonParams{});
+  ASSERT_TRUE(kept.has_value());
+  EXPECT_GE(kept->entry.directions, 128);
+  EXPECT_EQ(kept->entry.samples, 128);
+  EXPECT_EQ(kept->entry.far_lines, 2);
+  // One part unknown: the totals alone, the cheapest calibrated within the scaled request, which may
+  // trade near steps for directions.
+  m.sector_p99 = std::nan("");
+  const auto unknown = choose_after_measurement(0.005, *finest_rays, m, HorizonParams{});
+  const auto bound_only = choose_after_measurement(0.005, *finest_rays, 0.0052, HorizonParams{});
+  ASSERT_TRUE(unknown.has_value() && bound_only.has_value());
+  EXPECT_EQ(unknown->entry.samples, bound_only->entry.samples);
+  EXPECT_EQ(unknown->entry.directions, bound_only->entry.directions);
   // Without the parts, the totals alone: the cheapest calibrated within the scaled request, which
   // may trade near steps for directions.
   const auto totals = choose_after_measurement(0.005, *tried, 0.0052, HorizonParams{});
