@@ -16,17 +16,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 #include <memory>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "methods.h"
 #include "ray_scan.h"
 #include "skyview/error.h"
 #include "skyview/number_text.h"
+#include "skyview/surface_mesh.h"
 
 namespace skyview::detail {
 namespace {
@@ -79,80 +78,6 @@ void reject_own_triangles(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-// A skirt hangs from every edge of the mesh that only one triangle holds (the raster's sides, the rims
-// of nodata holes and the open diagonal of a half quad), kSkirtOut of a cell outward and ten cells
-// down. A ray running exactly along such an edge meets the mesh on it, and Embree's watertight test
-// only counts hits on edges that two triangles share: without skirts a wall one cell in from the
-// raster's corner was missed (1.4 rad off), and a ray along a grid line beside a hole lost its hit
-// on the hole's rim (0.36 rad). Hanging below the edge, a skirt hides nothing from a ray that passes
-// above it, but a ray that then falls steeply enough to catch up with its 1000:1 lean: within 0.06
-// degrees of the nadir across the edge, more than 10 degrees down where its course is within 0.01
-// degrees of the edge's. A deeper skirt (10 km) was too thin for float intersections and blocked
-// rays just above the boundary.
-constexpr double kSkirtOut = 0.01;  // cells
-
-struct SkirtVertex {
-  double col, row;  // pixel position
-  float z;          // height, in the terrain's sign
-};
-
-// Appends the skirts' triangles to `idx` (indices past the grid's vertices count into the returned
-// skirt vertices). Neighbouring edges that face the same way share their skirt's vertices, so that a
-// skirt is itself watertight along the edge.
-std::vector<SkirtVertex> hang_skirts(const Terrain& t, double sign, double drop, std::vector<unsigned>& idx) {
-  const int w = t.width(), h = t.height();
-  const std::size_t grid = static_cast<std::size_t>(w) * h;
-  auto quad_has_triangles = [&](int c, int r) {  // quad (c, r) spans cells c..c+1, r..r+1
-    if (c < 0 || r < 0 || c + 1 >= w || r + 1 >= h) return false;
-    return t.valid(c, r) + t.valid(c + 1, r) + t.valid(c, r + 1) + t.valid(c + 1, r + 1) >= 3;
-  };
-  std::vector<SkirtVertex> skirt;
-  std::unordered_map<std::uint64_t, unsigned> made;  // (grid vertex, outward direction) -> vertex
-  auto skirt_vertex = [&](int c, int r, int out_c, int out_r) {
-    const std::uint64_t key = t.heights.index(c, r) * 9 + static_cast<std::uint64_t>(3 * (out_c + 1) + (out_r + 1));
-    const auto [at, fresh] = made.try_emplace(key, static_cast<unsigned>(grid + skirt.size()));
-    if (fresh) {
-      const double step = kSkirtOut / std::hypot(out_c, out_r);
-      skirt.push_back({c + out_c * step, r + out_r * step, static_cast<float>(t.heights(c, r) - sign * drop)});
-    }
-    return at->second;
-  };
-  // The edge from cell (c0, r0) to (c1, r1), open towards (out_c, out_r).
-  auto hang = [&](int c0, int r0, int c1, int r1, int out_c, int out_r) {
-    const unsigned p = static_cast<unsigned>(t.heights.index(c0, r0)),
-                   q = static_cast<unsigned>(t.heights.index(c1, r1));
-    const unsigned p_out = skirt_vertex(c0, r0, out_c, out_r), q_out = skirt_vertex(c1, r1, out_c, out_r);
-    idx.insert(idx.end(), {p, q, q_out, p, q_out, p_out});
-  };
-  // A grid line's edge between two valid cells belongs to each quad beside it that has triangles.
-  for (int r = 0; r < h; ++r) {
-    for (int c = 0; c + 1 < w; ++c) {
-      if (!t.valid(c, r) || !t.valid(c + 1, r)) continue;
-      const bool above = quad_has_triangles(c, r - 1), below = quad_has_triangles(c, r);
-      if (above != below) hang(c, r, c + 1, r, 0, above ? 1 : -1);
-    }
-  }
-  for (int c = 0; c < w; ++c) {
-    for (int r = 0; r + 1 < h; ++r) {
-      if (!t.valid(c, r) || !t.valid(c, r + 1)) continue;
-      const bool left = quad_has_triangles(c - 1, r), right = quad_has_triangles(c, r);
-      if (left != right) hang(c, r, c, r + 1, left ? 1 : -1, 0);
-    }
-  }
-  // A half quad's diagonal, open towards its nodata corner.
-  for (int r = 0; r + 1 < h; ++r) {
-    for (int c = 0; c + 1 < w; ++c) {
-      const bool va = t.valid(c, r), vb = t.valid(c + 1, r), vd = t.valid(c, r + 1), ve = t.valid(c + 1, r + 1);
-      if (va + vb + vd + ve != 3) continue;
-      if (!va) hang(c + 1, r, c, r + 1, -1, -1);
-      if (!vb) hang(c, r, c + 1, r + 1, 1, -1);
-      if (!vd) hang(c, r, c + 1, r + 1, -1, 1);
-      if (!ve) hang(c + 1, r, c, r + 1, 1, 1);
-    }
-  }
-  return skirt;
-}
-
 // Vertices in metres east/north of the buffer's first cell and height relative to the base.
 class TerrainMesh {
  public:
@@ -163,33 +88,9 @@ class TerrainMesh {
     scene_.reset(rtcNewScene(device));
     rtcSetSceneFlags(scene_.get(), RTC_SCENE_FLAG_ROBUST);
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    std::vector<unsigned> idx;
-    idx.reserve(static_cast<std::size_t>(w) * h * 6);
-    for (int r = 0; r + 1 < h; ++r) {
-      for (int c = 0; c + 1 < w; ++c) {
-        const unsigned a = static_cast<unsigned>(t.heights.index(c, r)), b = a + 1;
-        const unsigned d = static_cast<unsigned>(t.heights.index(c, r + 1)), e = d + 1;
-        const bool va = t.valid(c, r), vb = t.valid(c + 1, r), vd = t.valid(c, r + 1), ve = t.valid(c + 1, r + 1);
-        const int valid = va + vb + vd + ve;
-        if (valid == 4) {
-          // Split along the lower diagonal (in this mesh's sign): the crease is a valley, so along
-          // any straight line the surface peaks on the grid lines, where every method samples it.
-          const double ae = sign * (double(t.heights(c, r)) + t.heights(c + 1, r + 1));
-          const double bd = sign * (double(t.heights(c + 1, r)) + t.heights(c, r + 1));
-          if (ae <= bd) {
-            idx.insert(idx.end(), {a, b, e, a, e, d});
-          } else {
-            idx.insert(idx.end(), {a, b, d, b, e, d});
-          }
-        } else if (valid == 3) {  // the valid half; nodata never occludes
-          if (!va) idx.insert(idx.end(), {b, e, d});
-          if (!vb) idx.insert(idx.end(), {a, e, d});
-          if (!vd) idx.insert(idx.end(), {a, b, e});
-          if (!ve) idx.insert(idx.end(), {a, b, d});
-        }
-      }
-    }
-    const std::vector<SkirtVertex> skirt = hang_skirts(t, sign, 1000 * kSkirtOut * j_.min_cell_size(), idx);
+    SurfaceMesh mesh = surface_mesh(t, sign, 1000 * kSkirtOut * j_.min_cell_size());
+    std::vector<unsigned>& idx = mesh.triangles;
+    const std::vector<SurfaceMesh::SkirtVertex>& skirt = mesh.skirt_vertices;
     const std::size_t grid = static_cast<std::size_t>(w) * h;
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                           3 * sizeof(float), grid + skirt.size()));
