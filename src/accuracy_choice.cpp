@@ -46,16 +46,27 @@ AccuracyChoice choice_of(const CalibrationEntry& e, const HorizonParams& base) {
   return c;
 }
 
+// Among the entries `admits`: the cheapest whose p99 is within `target`, and the most accurate.
+struct Pick {
+  const CalibrationEntry* cheapest = nullptr;
+  const CalibrationEntry* most_accurate = nullptr;
+};
+template <class Admits>
+Pick pick(double target, Admits admits) {
+  Pick p;
+  for (const auto& e : calibration_table()) {
+    if (!admits(e)) continue;
+    if (!p.most_accurate || e.worst_p99 < p.most_accurate->worst_p99) p.most_accurate = &e;
+    if (e.worst_p99 <= target && (!p.cheapest || e.ns_per_cell < p.cheapest->ns_per_cell)) p.cheapest = &e;
+  }
+  return p;
+}
+
 }  // namespace
 
 AccuracyChoice choose_for_max_error(double max_error, const HorizonParams& base) {
   if (!(max_error > 0.0) || max_error > 1.0) throw Error("--max-error must be above 0 and at most 1");
-  const CalibrationEntry* best = nullptr;
-  const CalibrationEntry* most_accurate = nullptr;
-  for (const auto& e : calibration_table()) {
-    if (!most_accurate || e.worst_p99 < most_accurate->worst_p99) most_accurate = &e;
-    if (e.worst_p99 <= max_error && (!best || e.ns_per_cell < best->ns_per_cell)) best = &e;
-  }
+  const auto [best, most_accurate] = pick(max_error, [](const CalibrationEntry&) { return true; });
   if (!best) {
     char msg[256];
     std::snprintf(msg, sizeof msg,
@@ -90,15 +101,9 @@ std::optional<AccuracyChoice> choose_after_measurement(double max_error, const C
     return true;
   };
   for (int pass = split ? 0 : 2; pass <= 2; ++pass) {
-    const CalibrationEntry* best = nullptr;
-    const CalibrationEntry* most_accurate = nullptr;
-    for (const auto& e : calibration_table()) {
-      if (!(e.worst_p99 < tried.worst_p99) || !admits(e, pass)) continue;
-      if (!most_accurate || e.worst_p99 < most_accurate->worst_p99) most_accurate = &e;
-      if (e.worst_p99 <= target && (!best || e.ns_per_cell < best->ns_per_cell)) best = &e;
-    }
-    if (!best) best = most_accurate;
-    if (best) return choice_of(*best, base);
+    const Pick p =
+        pick(target, [&](const CalibrationEntry& e) { return e.worst_p99 < tried.worst_p99 && admits(e, pass); });
+    if (const CalibrationEntry* best = p.cheapest ? p.cheapest : p.most_accurate) return choice_of(*best, base);
   }
   return std::nullopt;
 }

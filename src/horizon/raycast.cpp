@@ -1,10 +1,7 @@
 // The ray-cast reference. The terrain (the buffer as HorizonEngine::compute extends it at the
-// raster's edges, so at least three cells each way) becomes a triangle mesh over cell centres:
-// each quad of four valid centres is split along its lower diagonal, so the mesh is linear along grid lines,
-// exactly as the march and the sweep read it, and its creases inside a quad are valleys, so no
-// ray finds a higher point inside a quad than on its edges: all methods see one surface. A quad
-// with one nodata corner keeps the triangle of the other three; one with more is left open
-// (nodata never occludes). The mesh sits in the ground frame at the raster centre. Per cell
+// raster's edges, so at least three cells each way) becomes the surface mesh every method reads
+// (surface_mesh.h: triangles over cell centres, creases that are valleys, skirts on open edges),
+// in the ground frame at the buffer's centre (the raster's, but for blocks cut with a radius). Per cell
 // and direction, rays leave the cell's own vertex and ignore the triangles around it; a
 // heightfield seen from its surface is blocked below the horizon and open above it, and the
 // horizon is bracketed to 1e-5 rad by rays that climb over each occluder's top (climb_horizon).
