@@ -142,6 +142,22 @@ class TerrainMesh {
     return ray;
   }
 
+  // The ground distance, along the azimuth, of the last row or column crossing within `range`; 0
+  // where none is. The mesh peaks only on grid lines, and the march and the sweep read it there up
+  // to the last crossing within their radius, so with a radius the ray cast stops there too. Until
+  // Dec 3 it stopped at the radius itself, inside a quad, where the ramp up to a building just
+  // beyond the last crossing counted: 69° where the march, seeing nothing, read 0.06°.
+  double reach(double sin_az, double cos_az, double range) const {
+    if (std::isinf(range)) return range;
+    double pc, pr;
+    j_.pixel_step(sin_az, cos_az, pc, pr);
+    double d = 0.0;
+    for (const double per_metre : {std::abs(pc), std::abs(pr)}) {
+      if (per_metre > 0.0) d = std::max(d, std::floor(range * per_metre * (1.0 + 1e-12)) / per_metre);
+    }
+    return std::min(d, range);
+  }
+
   // Slope, in this mesh's sign, from cell (col, row) to where the ground track along the azimuth
   // first crosses a row or column line (read linearly along it, as the march reads it): the far
   // edge of the triangles around the cell's vertex. -inf where that crossing leaves the buffer, NaN
@@ -160,19 +176,28 @@ class TerrainMesh {
   }
 
   // Slope, in this mesh's sign, from cell (col, row) to the terrain where its ground track ends:
-  // at the buffer's edge or at `range`. A ray that Embree lets through but that ends below it went
-  // into the terrain through a hit lost in rounding (a ray along a grid line meets the mesh on its
-  // edges) and never came out: it is blocked. NaN where the track ends at once or on nodata.
+  // at the buffer's edge or at `range`, or, where it ends over nodata, at the last point of the
+  // track (half a cell apart) that has terrain. A ray that Embree lets through but that is below
+  // that terrain went into it through a hit lost in rounding (a ray along a grid line meets the
+  // mesh on its edges), or under a hole's skirt, and never came out: it is blocked. Until Dec 3 a
+  // track ending on nodata (a collar of nodata around a city) bounded nothing, and such rays
+  // escaped: 50° below a building's top at one cell. NaN where the track ends at once or meets
+  // no terrain.
   double end_slope(int col, int row, double sin_az, double cos_az, double range) const {
     double pc, pr;
     j_.pixel_step(sin_az, cos_az, pc, pr);
     const double last_c = t_.width() - 1, last_r = t_.height() - 1;
     const double to_c = pc > 0 ? (last_c - col) / pc : pc < 0 ? -col / pc : kInf;
     const double to_r = pr > 0 ? (last_r - row) / pr : pr < 0 ? -row / pr : kInf;
-    const double d = std::min({to_c, to_r, range});
-    if (!(d > 0.0) || std::isinf(d)) return std::numeric_limits<double>::quiet_NaN();
-    const double x = std::clamp(col + pc * d, 0.0, last_c), y = std::clamp(row + pr * d, 0.0, last_r);
-    return sign_ * (surface(x, y) - t_.heights(col, row)) / d;
+    const double end = std::min({to_c, to_r, range});
+    if (!(end > 0.0) || std::isinf(end)) return std::numeric_limits<double>::quiet_NaN();
+    const double back = 0.5 / std::max(std::abs(pc), std::abs(pr));  // metres per half cell
+    for (double d = end; d > 0.0; d -= back) {
+      const double x = std::clamp(col + pc * d, 0.0, last_c), y = std::clamp(row + pr * d, 0.0, last_r);
+      const double z = surface(x, y);
+      if (!std::isnan(z)) return sign_ * (z - t_.heights(col, row)) / d;
+    }
+    return std::numeric_limits<double>::quiet_NaN();
   }
 
   // The mesh's height at pixel position (x, y) inside the buffer, from the triangle holding it (the
@@ -304,6 +329,8 @@ class RaycastEngine final : public HorizonEngine {
       cos_k[k] = std::cos(sector_azimuth(k, n) + out.sector_rotation);
     }
     const double range = radius();
+    std::vector<double> reach_k(n);
+    for (int k = 0; k < n; ++k) reach_k[k] = upper.reach(sin_k[k], cos_k[k], range);
     tbb::parallel_for(tbb::blocked_range<int>(0, window.rows), [&](const tbb::blocked_range<int>& rows) {
       for (int wr = rows.begin(); wr != rows.end(); ++wr) {
         const int row = window.row0 + wr;
@@ -314,10 +341,10 @@ class RaycastEngine final : public HorizonEngine {
           const double z = terrain.heights(col, row);
           for (int k = 0; k < n; ++k) {
             out.upper_at(cell_index, k) =
-                static_cast<float>(climb_horizon(upper, col, row, z, sin_k[k], cos_k[k], range));
+                static_cast<float>(climb_horizon(upper, col, row, z, sin_k[k], cos_k[k], reach_k[k]));
             if (lower) {
               out.lower_at(cell_index, k) =
-                  static_cast<float>(-climb_horizon(*lower, col, row, -z, sin_k[k], cos_k[k], range));
+                  static_cast<float>(-climb_horizon(*lower, col, row, -z, sin_k[k], cos_k[k], reach_k[k]));
             }
           }
           if (p_.rays > 0) monte_carlo_svf(upper, terrain, col, row, z, range, out, cell_index);
@@ -342,6 +369,7 @@ class RaycastEngine final : public HorizonEngine {
   // slopes, where a climb gains only a triangle, the rays after the first kClimbs halve the bracket:
   // on a 1 m lidar DEM 13 rays per direction, and no faster than the bisection.
   static double climb_horizon(const TerrainMesh& mesh, int col, int row, double z, double s, double c, double range) {
+    if (!(range > 0.0)) return 0.0;  // no crossing within the radius: nothing in range
     const double first = mesh.first_crossing_slope(col, row, s, c);
     double lo = -0.5 * M_PI, hi = 0.5 * M_PI;  // the horizon is in [lo, hi): lo seen (or the nadir), hi open
     bool blocked = false;
@@ -384,7 +412,9 @@ class RaycastEngine final : public HorizonEngine {
         const double u = (i + uniform()) / side, v = (j + uniform()) / side;
         const double sin_zenith = std::sqrt(u), azimuth = 2.0 * M_PI * v;
         const double elevation = std::acos(sin_zenith);  // elevation = 90° - zenith
-        open += !mesh.occluded(col, row, z, std::sin(azimuth), std::cos(azimuth), elevation, range);
+        const double sa = std::sin(azimuth), ca = std::cos(azimuth);
+        const double reach = mesh.reach(sa, ca, range);
+        open += !(reach > 0.0) || !mesh.occluded(col, row, z, sa, ca, elevation, reach);
       }
     }
     const double p = static_cast<double>(open) / total;
