@@ -426,30 +426,69 @@ void check_output_format(const std::string& format, int bands, const std::vector
                 "); choose GTiff, COG, HFA or netCDF");
   }
   const CPLStringList opts = creation_options(format, GDT_Float32, user_options);
-  // Formats that only copy a finished dataset check it then, at the end of the run: try a
-  // 2 x 2 copy in memory now. (Formats created band by band fail at once when they fail.)
-  if (CSLFetchBoolean(driver->GetMetadata(), GDAL_DCAP_CREATE, FALSE)) return;
-  DatasetPtr probe = make_memory_dataset(2, 2, bands, GDT_Float32);
-  const char* ext = driver->GetMetadataItem(GDAL_DMD_EXTENSION);
-  const std::string name =
-      std::string("/vsimem/skyview-format-probe-") + std::to_string(::getpid()) + "." + (ext && *ext ? ext : "out");
-  std::string why;
-  int kept = bands;
-  {
+  // Try a 2 x 2 dataset of the run's bands in memory now, rather than fail at the end of the run:
+  // formats that only copy a finished dataset check it then, and formats created band by band may
+  // hold fewer bands than asked (SAGA and RST refuse more than one, GTX keeps one silently).
+  const bool creates = CSLFetchBoolean(driver->GetMetadata(), GDAL_DCAP_CREATE, FALSE);
+  // The format's extension (some drivers name only their files with it: SAGA's .sdat).
+  std::string ext = driver->GetMetadataItem(GDAL_DMD_EXTENSION) ? driver->GetMetadataItem(GDAL_DMD_EXTENSION) : "";
+  if (ext.empty() && driver->GetMetadataItem(GDAL_DMD_EXTENSIONS)) {
+    std::istringstream first(driver->GetMetadataItem(GDAL_DMD_EXTENSIONS));
+    first >> ext;
+  }
+  const std::string stem = "skyview-format-probe-" + std::to_string(::getpid());
+  const std::string leaf = stem + "." + (ext.empty() ? "out" : ext);
+  std::string name = "/vsimem/" + leaf;
+  // What writing `n` bands to `name` says (empty when it works) and how many a reader gets back.
+  auto probe = [&](int n, int& kept) {
+    std::string why;
+    kept = n;
     const CPLErrorHandlerPusher quiet(CPLQuietErrorHandler);  // the probe's warnings would only confuse
     CPLErrorReset();
-    GDALDataset* out = driver->CreateCopy(name.c_str(), probe.get(), FALSE, opts.List(), nullptr, nullptr);
+    GDALDataset* out = nullptr;
+    if (creates) {
+      out = driver->Create(name.c_str(), 2, 2, n, GDT_Float32, opts.List());
+    } else {
+      DatasetPtr source = make_memory_dataset(2, 2, n, GDT_Float32);
+      out = driver->CreateCopy(name.c_str(), source.get(), FALSE, opts.List(), nullptr, nullptr);
+    }
+    if (out) kept = std::min(kept, out->GetRasterCount());
     why = out ? close_written(out) : last_gdal_error();
     if (why.rfind(name + ": ", 0) == 0) why.erase(0, name.size() + 2);  // the probe's name means nothing here
     // Some formats (XYZ) keep the first band with only a warning: count what a reader gets back.
     if (out && why.empty()) {
       GDALDatasetUniquePtr back(GDALDataset::Open(name.c_str(), GDAL_OF_RASTER));
-      if (back) kept = back->GetRasterCount();
+      if (back) kept = std::min(kept, back->GetRasterCount());
     }
     driver->Delete(name.c_str());
     VSIUnlink(name.c_str());
     CPLErrorReset();
+    if (why.empty() && !out) why = "unknown GDAL error";
+    return why;
+  };
+  int kept = bands;
+  std::string why = probe(bands, kept);
+  // Formats that cannot be created in memory at all (SAGA, netCDF: one band fails too) are tried in
+  // the temporary folder; if even one band fails there, they are not judged here.
+  if (creates && !why.empty()) {
+    int kept_one = 1;
+    if (!probe(1, kept_one).empty()) {
+      std::error_code ec;
+      const std::filesystem::path folder = std::filesystem::temp_directory_path(ec);
+      if (ec) return;
+      name = (folder / leaf).string();
+      kept = bands;
+      why = probe(bands, kept);
+      const bool one_fails = !why.empty() && !probe(1, kept_one).empty();
+      // A failed creation can leave a header behind (SAGA's .sgrd), which Delete does not find.
+      for (const auto& entry : std::filesystem::directory_iterator(folder, ec)) {
+        if (entry.path().stem() == stem) std::filesystem::remove(entry.path(), ec);
+      }
+      if (one_fails) return;
+    }
   }
+  // No bands at all: netCDF defines its variables as they are written, not judged here either.
+  if (why.empty() && kept == 0) return;
   const std::string what = std::to_string(bands) + " float32 band" + (bands == 1 ? "" : "s");
   if (!why.empty()) throw Error("GDAL format '" + format + "' cannot write " + what + ": " + why);
   if (kept < bands) {

@@ -357,6 +357,12 @@ TEST_F(CliErrors, OutputsMustBeWritableInTheirFormatBeforeTheWork) {
   // XYZ writes only the first band, with a warning: counted back from the probe.
   expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.xyz -of XYZ", dir),
                         "GDAL format 'XYZ' keeps 1 of 5 float32 bands");
+  // Formats created band by band that hold one band: SAGA says so, GTX keeps one silently. Until
+  // Dec 3 both were found out only when the run's bands were written.
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.sdat -of SAGA", dir),
+                        "GDAL format 'SAGA' cannot write 5 float32 bands: SAGA Binary Grid only supports 1 band");
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.gtx -of GTX", dir), "GDAL format 'GTX' ");
+  EXPECT_EQ(run_skyview("svf " + good + " " + dir + "/o.sdat -of SAGA --products svf", dir).exit_code, 0);
   EXPECT_EQ(run_skyview("svf " + good + " " + dir + "/o.asc -of AAIGrid --products svf", dir).exit_code, 0);
   for (const auto& e : std::filesystem::directory_iterator(dir)) {
     EXPECT_EQ(e.path().filename().string().find("skyview-tmp"), std::string::npos) << e.path();
