@@ -82,7 +82,8 @@ std::int64_t quantile_upper_rank(std::int64_t n, double q, double confidence) {
 SvfCheck::SvfCheck(const Terrain& terrain, const SvfCheckOptions& options)
     : directions_(options.directions), curvature_(options.curvature) {
   if (options.cells < 1) throw Error("the svf check needs at least one cell");
-  if (options.directions < 1 || options.directions > 1024) throw Error("the svf check's directions must be 1 to 1024");
+  if (options.directions < 1 || options.directions > kSvfCheckMaxDirections)
+    throw Error("the svf check's directions must be 1 to " + std::to_string(kSvfCheckMaxDirections));
   const auto start = std::chrono::steady_clock::now();
   cells_ = sample_valid_cells(terrain, options.cells, options.seed, exhaustive_);
   Window inner;

@@ -70,17 +70,24 @@ Runner setup(CLI::App& app) {
                    o->reference_directions, finest);
     }
     std::error_code ec;
+    const bool made = !std::filesystem::exists(o->out, ec);
     std::filesystem::create_directories(o->out, ec);
     if (ec || !std::filesystem::is_directory(o->out))
       throw Error("--out '" + o->out + "' is not a folder that can be made");
-    for (const auto& n : names) {
-      check_outputs_apart({o->out + "/" + n}, {o->input});
-      check_output_writable(o->out + "/" + n, o->overwrite);
+    Terrain terrain;
+    try {
+      for (const auto& n : names) {
+        check_outputs_apart({o->out + "/" + n}, {o->input});
+        check_output_writable(o->out + "/" + n, o->overwrite);
+      }
+      ReadOptions ro;
+      ro.band = o->band;
+      ro.z_scale = o->z_scale;
+      terrain = read_terrain(o->input, ro);
+    } catch (...) {
+      if (made) std::filesystem::remove(o->out, ec);  // a refused run leaves no empty folder behind
+      throw;
     }
-    ReadOptions ro;
-    ro.band = o->band;
-    ro.z_scale = o->z_scale;
-    const Terrain terrain = read_terrain(o->input, ro);
     if (!o->quiet) std::fprintf(stderr, "reference: raycast with %d directions...\n", o->reference_directions);
     const BenchReference ref = compute_reference(terrain, o->reference_directions, origin);
     if (!o->quiet) {

@@ -140,6 +140,11 @@ Runner setup(CLI::App& app) {
     const bool monte_carlo = job.engine->name() == "raycast" && job.engine->params().rays > 0;
     check_output_format(o->out.format, static_cast<int>(chosen.size()) + (monte_carlo ? 2 : 0),
                         o->out.creation_options);
+    if (n_check > 0 && job.engine->params().directions > kSvfCheckMaxDirections) {
+      throw Error("--check-cells measures against the run's own sectors, at most " +
+                  std::to_string(kSvfCheckMaxDirections) + " (this run has --directions " +
+                  std::to_string(job.engine->params().directions) + "); use fewer directions or leave it out");
+    }
     // Horizons are held a part at a time (compute_sky_view), so memory does not grow with the
     // number of directions.
     SkyViewProducts p;

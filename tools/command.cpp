@@ -122,4 +122,10 @@ CLI::Validator number_in(double lo, double hi) {
                       "[" + range + "]");
 }
 
+CLI::Validator number_above(double lo, double hi) {
+  const std::string a = CLI::detail::to_string(lo), b = CLI::detail::to_string(hi);
+  return number_check([lo, hi](double x) { return x > lo && x <= hi; },
+                      "must be a number above " + a + " and at most " + b, "(" + a + " to " + b + "]");
+}
+
 }  // namespace skyview::cli

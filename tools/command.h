@@ -48,6 +48,8 @@ const CLI::Validator& non_negative_number();
 const CLI::Validator& finite_number();
 // A number in [lo, hi]; NaN fails (CLI::Range lets it through: every comparison with it is false).
 CLI::Validator number_in(double lo, double hi);
+// A finite number in (lo, hi].
+CLI::Validator number_above(double lo, double hi);
 
 // Throws when `option` was given on the command line but the run will not use it (`used` is
 // false): "OPTION applies only to WHERE". A batch job would otherwise get the answer to another

@@ -9,6 +9,7 @@
 #include "skyview/accuracy_choice.h"
 #include "skyview/error.h"
 #include "skyview/number_text.h"
+#include "skyview/sky_view.h"
 #include "skyview/version.h"
 
 namespace skyview::cli {
@@ -61,7 +62,7 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
                  "Choose the cheapest method and parameters whose calibrated 99th-percentile error against the "
                  "continuous svf (sector discretisation included) is below this; it sets --method, --directions, "
                  "--samples, --far-lines and --radius, which are then refused")
-      ->check(number_in(0.0, 1.0));
+      ->check(number_above(0.0, 1.0));
   app.add_flag("!--no-early-exit", o.params.early_exit,
                "Disable early termination (march and sampled: the max-height pyramid; sweep: skipped far-field "
                "searches); same results");
@@ -86,7 +87,11 @@ void check_options_apply(const HorizonJobOptions& o, const std::string& method) 
   const std::string used_by = " (this run uses " + method + ")";
   refuse_unused(*o.app, "--rays", method == "raycast", "--method raycast" + used_by);
   refuse_unused(*o.app, "--seed", method == "sampled", "--method sampled" + used_by);
-  refuse_unused(*o.app, "--samples", method == "sampled" || method == "sweep", "--method sampled or sweep" + used_by);
+  // With a radius the sweep reads every crossing within it: no near steps to count.
+  refuse_unused(*o.app, "--samples", method == "sampled" || (method == "sweep" && !(o.params.radius > 0.0)),
+                "--method sampled, or sweep at unlimited radius" + used_by);
+  refuse_unused(*o.app, "--refraction", method != "raycast" && o.params.curvature != "off",
+                "runs with Earth curvature (--curvature on or auto; the ray cast models none)" + used_by);
   refuse_unused(*o.app, "--far-lines", method == "sweep" && !(o.params.radius > 0.0),
                 "--method sweep at unlimited radius" + used_by);
 }
@@ -98,6 +103,24 @@ void check_edge_mode(const HorizonJob& job) {
                               "--far-lines and --radius) is every cell; choose the method and --radius yourself"
                             : "unlimited radius is every cell; give --radius"));
   }
+}
+
+// --edge nodata with a radius whose circle leaves the raster from every cell would write nodata
+// only: refused like the unlimited radius (found from the centre outwards, so a raster where most
+// cells fit stops at once).
+void check_edge_leaves_cells(const HorizonJob& job, double radius_asked) {
+  if (job.edge != EdgeMode::nodata) return;
+  const Terrain& t = job.terrain;
+  const double radius = job.engine->radius();
+  if (!search_circle_leaves_raster(t, t.width() / 2, t.height() / 2, radius)) return;
+  for (int r = 0; r < t.height(); ++r) {
+    for (int c = 0; c < t.width(); ++c) {
+      if (t.valid(c, r) && !search_circle_leaves_raster(t, c, r, radius)) return;
+    }
+  }
+  throw Error("--edge nodata blanks the cells whose search reaches the raster's edge, which with --radius " +
+              number_text(radius_asked) +
+              " is every cell of this raster; give a smaller --radius or leave --edge open");
 }
 
 // The metadata of the method that runs (and of --max-error's choice), replacing the last one's.
@@ -186,6 +209,7 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   m["SOURCE"] = o.input;
   m["SOURCE_BAND"] = std::to_string(o.band);
   m["Z_SCALE"] = number_text(o.z_scale);
+  check_edge_leaves_cells(job, params.radius);
   m["GROUND_FRAME"] = job.terrain.frame.description();
   m["EDGE_MODE"] = o.edge;
   record_method(job, o.max_error);

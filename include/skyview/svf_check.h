@@ -14,6 +14,9 @@
 
 namespace skyview {
 
+// The most sectors a check measures against (it walks four times as many at every checked cell).
+constexpr int kSvfCheckMaxDirections = 1024;
+
 struct SvfCheckOptions {
   int cells = 1000;        // cells sampled; every valid cell when the raster has no more
   int directions = 64;     // sectors of the reference (the calibration's)

@@ -69,6 +69,8 @@ TEST_F(CliErrors, SynthAndBenchRefuseWhatTheyCannotMake) {
   expect_one_line_error(run_skyview("bench " + good + " --methods '' --out " + dir + "/b", dir), "no method given");
   expect_one_line_error(run_skyview("bench " + good + " --methods sweep,sweep --out " + dir + "/b", dir),
                         "given twice");
+  // Refused once the folder is made (the band is found out by reading): the folder goes again.
+  expect_one_line_error(run_skyview("bench " + good + " --band 2 --methods march --out " + dir + "/b", dir), "band 2");
   EXPECT_FALSE(std::filesystem::exists(dir + "/b"));
 }
 
@@ -310,9 +312,9 @@ TEST_F(CliErrors, NumbersThatSteerTheRunMustBeNumbers) {
   expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --refraction nan", dir),
                         "--refraction: must be a finite number", 2);
   expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --max-error nan", dir),
-                        "--max-error: must be a number from 0 to 1", 2);
+                        "--max-error: must be a number above 0 and at most 1", 2);
   expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --max-error 0", dir),
-                        "--max-error must be above 0");
+                        "--max-error: must be a number above 0 and at most 1", 2);
   expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --threads -1", dir),
                         "--threads: must be zero or positive", 2);
   expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --far-lines 3", dir), "--far-lines", 2);
@@ -325,7 +327,16 @@ TEST_F(CliErrors, OptionsTheRunWouldNotUseAreRefused) {
   const std::pair<std::string, std::string> refused[] = {
       {"svf " + good + o + " --rays 1024", "--rays applies only to --method raycast (this run uses sweep)"},
       {"svf " + good + o + " --method march --samples 8",
-       "--samples applies only to --method sampled or sweep (this run uses march)"},
+       "--samples applies only to --method sampled, or sweep at unlimited radius (this run uses march)"},
+      {"svf " + good + o + " --radius 10 --samples 7",
+       "--samples applies only to --method sampled, or sweep at unlimited radius (this run uses sweep)"},
+      {"svf " + good + o + " --curvature off --refraction 0.2",
+       "--refraction applies only to runs with Earth curvature"},
+      {"svf " + good + o + " --method raycast --refraction 0.2",
+       "--refraction applies only to runs with Earth curvature (--curvature on or auto; the ray cast models none) "
+       "(this run uses raycast)"},
+      {"svf " + good + o + " --directions 2048 --check-cells 10",
+       "--check-cells measures against the run's own sectors, at most 1024 (this run has --directions 2048)"},
       {"svf " + good + o + " --method raycast --seed 3", "--seed applies only to --method sampled"},
       {"svf " + good + o + " --max-error 0.02 --directions 64",
        "--directions applies only to runs without --max-error"},
@@ -373,6 +384,11 @@ TEST_F(CliErrors, OutputsMustBeWritableInTheirFormatBeforeTheWork) {
 TEST_F(CliErrors, RunsThatCouldOnlyGiveBlankOrOpenSkiesAreRefused) {
   expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --edge nodata", dir),
                         "which with an unlimited radius is every cell");
+  // The pit raster is 21 m across: no 11 m circle fits in it, a 10 m one fits at its centre only.
+  expect_one_line_error(run_skyview("horizon " + good + " " + dir + "/o.tif --edge nodata --radius 11", dir),
+                        "which with --radius 11 is every cell of this raster");
+  EXPECT_EQ(run_skyview("svf " + good + " " + dir + "/o.tif --edge nodata --radius 10", dir).exit_code, 0);
+  std::filesystem::remove(dir + "/o.tif");
   expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --method sampled --radius 1e30", dir),
                         "every sample of the sampled method beyond the raster");
   EXPECT_FALSE(std::filesystem::exists(dir + "/o.tif"));
