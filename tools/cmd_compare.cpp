@@ -106,7 +106,9 @@ Runner setup(CLI::App& app) {
           double slope = 0, aspect = 0;
           horn_slope_aspect(dem, col, row, slope, aspect);
           float& v = value.values(col, row);
-          if (slope > limit && !std::isnan(v)) v = std::numeric_limits<float>::quiet_NaN(), ++steep;
+          // Counted only where both have a value: the others were never compared.
+          if (slope > limit && !std::isnan(v) && !std::isnan(reference.values(col, row)))
+            v = std::numeric_limits<float>::quiet_NaN(), ++steep;
         }
       }
     }

@@ -170,6 +170,23 @@ TEST_F(CompareCli, MaxSlopeLeavesOutSteepCells) {
   EXPECT_EQ(flat["cells"], 80);
 }
 
+// Only cells compared can be left out: with the wall on column 10, columns 9 and 11 are steep, but
+// column 11 has no reference (until Dec 3 it was counted among the left out, and a pair of rasters
+// with nothing in common read "every cell valid in both is steeper").
+TEST_F(CompareCli, MaxSlopeCountsOnlyCellsValidInBoth) {
+  Grid<float> dem(12, 10, 0.0f);
+  for (int row = 0; row < 10; ++row) dem(10, row) = 10.0f;
+  write(dir + "/dem.tif", dem);
+  const nlohmann::json flat =
+      stats(dir + "/value.tif " + dir + "/reference.tif --dem " + dir + "/dem.tif --max-slope 5");
+  EXPECT_EQ(flat["left_out_steep"], 10);
+  EXPECT_EQ(flat["cells"], 90);
+  write(dir + "/empty.tif", Grid<float>(12, 10, kNaN));
+  const RunResult r = run(dir + "/value.tif " + dir + "/empty.tif --dem " + dir + "/dem.tif --max-slope 5");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("no cell is valid in both"), std::string::npos) << r.err;
+}
+
 // The JSON report is an output like any other: an existing one is kept unless --overwrite.
 TEST_F(CompareCli, KeepsAnExistingJsonUnlessOverwrite) {
   const std::string json = dir + "/kept.json";
