@@ -137,7 +137,8 @@ std::vector<BenchResult> run_bench(const Terrain& terrain, const std::vector<Ben
       }
       if (round == rounds - 1) {
         std::sort(times[i].begin(), times[i].end());
-        r.seconds = times[i][times[i].size() / 2];
+        const std::size_t n = times[i].size();  // the median: of an even count, the middle two's mean
+        r.seconds = n % 2 == 1 ? times[i][n / 2] : 0.5 * (times[i][n / 2 - 1] + times[i][n / 2]);
         r.cell_dirs_per_second =
             static_cast<double>(terrain.width()) * terrain.height() * configs[i].params.directions / r.seconds;
         if (on_result) on_result(r);

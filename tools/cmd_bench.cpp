@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
+#include <vector>
 
 #include "command.h"
 #include "skyview/error.h"
@@ -70,7 +71,11 @@ Runner setup(CLI::App& app) {
                    o->reference_directions, finest);
     }
     std::error_code ec;
-    const bool made = !std::filesystem::exists(o->out, ec);
+    // The folders this run makes, deepest first: a refused run leaves none of them behind.
+    std::vector<std::filesystem::path> made;
+    for (std::filesystem::path p = std::filesystem::absolute(o->out, ec);
+         !p.empty() && !std::filesystem::exists(p, ec) && p != p.parent_path(); p = p.parent_path())
+      made.push_back(p);
     std::filesystem::create_directories(o->out, ec);
     if (ec || !std::filesystem::is_directory(o->out))
       throw Error("--out '" + o->out + "' is not a folder that can be made");
@@ -85,7 +90,7 @@ Runner setup(CLI::App& app) {
       ro.z_scale = o->z_scale;
       terrain = read_terrain(o->input, ro);
     } catch (...) {
-      if (made) std::filesystem::remove(o->out, ec);  // a refused run leaves no empty folder behind
+      for (const auto& folder : made) std::filesystem::remove(folder, ec);  // only while empty
       throw;
     }
     if (!o->quiet) std::fprintf(stderr, "reference: raycast with %d directions...\n", o->reference_directions);

@@ -1,9 +1,12 @@
 // skyview horizon: horizon elevation angle per direction, one band per azimuth.
+#include <cpl_port.h>
+
 #include <cmath>
 #include <limits>
-#include <sstream>
+#include <string>
 
 #include "horizon_job.h"
+#include "skyview/number_text.h"
 
 namespace skyview::cli {
 namespace {
@@ -42,14 +45,33 @@ Runner setup(CLI::App& app) {
     // in progress are held), the other methods' in blocks of whole rows, a multiple of the
     // output's tile height so that each tile is compressed once. Memory does not grow with the
     // number of directions.
+    // A tile row of every band is held until it is compressed, so the other methods' GeoTIFF tiles
+    // are no taller than the rows the budget holds (256 rows of 1000 cells at 1024 directions held
+    // 1.2 GB, not 256 MB): 16 to 256 rows, or strips where even 16 are too many. -co TILED or
+    // BLOCKYSIZE keeps the user's own.
+    if (!job.engine->streams_directions() && o->out.format == "GTiff") {
+      bool users = false;
+      for (const std::string& kv : o->out.creation_options) {
+        const std::string key = kv.substr(0, kv.find('='));
+        users = users || EQUAL(key.c_str(), "TILED") || EQUAL(key.c_str(), "BLOCKYSIZE");
+      }
+      const int fit = rows_in_budget(*job.engine, w, kHorizonBlockBytes);
+      if (!users && fit < 16) {
+        wo.creation_options.insert(wo.creation_options.begin(), {"TILED=NO", "BLOCKYSIZE=" + std::to_string(fit)});
+      } else if (!users && fit < 256) {
+        wo.creation_options.insert(wo.creation_options.begin(), "BLOCKYSIZE=" + std::to_string(fit / 16 * 16));
+      }
+    }
     BandWriter out(o->output, w, h, n, job.terrain.georef, wo);
     const double rotation = job.sector_rotation * 180.0 / M_PI;
     for (int k = 0; k < n; ++k) {
-      std::ostringstream name, az;
-      const double azimuth = std::fmod(360.0 * k / n + rotation, 360.0);
-      az << (azimuth < 0.0 ? azimuth + 360.0 : azimuth);
-      name << "horizon_azimuth_" << az.str();
-      out.describe(k, {name.str(), "degree", nullptr, {{"AZIMUTH_DEG", az.str()}}});
+      // In [0, 360) to ten significant digits: a set turned by -0.0001° starts at 359.9998961, and
+      // a residue that rounds to 360 reads 0.
+      double azimuth = std::fmod(360.0 * k / n + rotation, 360.0);
+      if (azimuth < 0.0) azimuth += 360.0;
+      std::string az = number_text(azimuth);
+      if (std::stod(az) >= 360.0) az = "0";
+      out.describe(k, {"horizon_azimuth_" + az, "degree", nullptr, {{"AZIMUTH_DEG", az}}});
     }
     std::vector<float> degrees;
     // Rows [row0, row0 + rows) of direction k from its plane of radians over those rows.

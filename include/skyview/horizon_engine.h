@@ -119,6 +119,9 @@ constexpr std::size_t kHorizonBlockBytes = std::size_t{256} << 20;
 // A block of whole rows of a window and its horizons (compute_by_row_blocks).
 using RowBlockSink = std::function<void(const Window& block, HorizonField& field)>;
 
+// Rows of `cols` cells whose horizons by `engine` fit in `horizon_bytes` (at least one).
+int rows_in_budget(const HorizonEngine& engine, int cols, std::size_t horizon_bytes);
+
 // Computes `window` in blocks of whole rows, each holding about `horizon_bytes` of horizons (and a
 // multiple of `row_multiple` rows, at least one), and hands each to `take` before computing the
 // next, so that memory does not grow with the number of directions. For methods that find all of

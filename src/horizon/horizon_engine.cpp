@@ -67,16 +67,21 @@ void HorizonEngine::compute_window_directions(const Terrain& terrain, const Wind
   take(0, out.directions, out.upper.data(), out.lower.empty() ? nullptr : out.lower.data());
 }
 
-void compute_by_row_blocks(const HorizonEngine& engine, const Terrain& terrain, const Window& window,
-                           ProgressCounter& progress, std::size_t horizon_bytes, int row_multiple,
-                           const RowBlockSink& take) {
+int rows_in_budget(const HorizonEngine& engine, int cols, std::size_t horizon_bytes) {
   const HorizonParams& params = engine.params();
   // Per cell: the planes, and at most a rotation and two Monte-Carlo values besides.
   const std::size_t per_cell =
       sizeof(float) * (static_cast<std::size_t>(params.directions) * (params.lower ? 2 : 1) + 3);
-  const std::size_t per_row = std::max<std::size_t>(1, per_cell * static_cast<std::size_t>(window.cols));
+  const std::size_t per_row = std::max<std::size_t>(1, per_cell * static_cast<std::size_t>(std::max(1, cols)));
+  return static_cast<int>(std::clamp<std::size_t>(horizon_bytes / per_row, 1, std::size_t{1} << 30));
+}
+
+void compute_by_row_blocks(const HorizonEngine& engine, const Terrain& terrain, const Window& window,
+                           ProgressCounter& progress, std::size_t horizon_bytes, int row_multiple,
+                           const RowBlockSink& take) {
   const std::size_t multiple = static_cast<std::size_t>(std::max(1, row_multiple));
-  const std::size_t rows = std::max<std::size_t>(1, horizon_bytes / per_row / multiple) * multiple;
+  const std::size_t fit = static_cast<std::size_t>(rows_in_budget(engine, window.cols, horizon_bytes));
+  const std::size_t rows = std::max<std::size_t>(1, fit / multiple) * multiple;
   const int block_rows = static_cast<int>(std::min<std::size_t>(rows, static_cast<std::size_t>(window.rows)));
   for (int r0 = 0; r0 < window.rows; r0 += block_rows) {
     const Window block{window.col0, window.row0 + r0, window.cols, std::min(block_rows, window.rows - r0)};

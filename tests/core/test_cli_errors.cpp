@@ -69,7 +69,11 @@ TEST_F(CliErrors, SynthAndBenchRefuseWhatTheyCannotMake) {
   expect_one_line_error(run_skyview("bench " + good + " --methods '' --out " + dir + "/b", dir), "no method given");
   expect_one_line_error(run_skyview("bench " + good + " --methods sweep,sweep --out " + dir + "/b", dir),
                         "given twice");
-  // Refused once the folder is made (the band is found out by reading): the folder goes again.
+  // Refused once the folders are made (the input is found out by reading it): they go again, all of
+  // them.
+  expect_one_line_error(run_skyview("bench " + dir + "/none.tif --methods march --out " + dir + "/nest/a/b", dir),
+                        "none.tif");
+  EXPECT_FALSE(std::filesystem::exists(dir + "/nest"));
   expect_one_line_error(run_skyview("bench " + good + " --band 2 --methods march --out " + dir + "/b", dir), "band 2");
   EXPECT_FALSE(std::filesystem::exists(dir + "/b"));
 }
@@ -226,6 +230,35 @@ TEST_F(CliErrors, OutputCarriesBandsMetadataAndGeoreference) {
   ASSERT_TRUE(curved);
   EXPECT_STREQ(curved->GetMetadataItem("CURVATURE"), "on (auto)");
   EXPECT_STREQ(curved->GetMetadataItem("REFRACTION"), "0.13");
+}
+
+// The methods that hold all directions of a block of rows write GeoTIFF tiles no taller than the
+// rows their 256 MB hold (300 cells at 1024 directions: 213 rows, so tiles of 208), unless the user
+// set the tiling. Until Dec 3 a tile row of 256 was held whatever the directions.
+TEST_F(CliErrors, HorizonTilesFitTheRowsHeldAtOnce) {
+  const std::string wide = dir + "/wide.tif", out = dir + "/h.tif";
+  write_terrain(wide, rasterize(circular_pit(5, 5), 300, 20, local_grid(300, 20, 1.0)), {});
+  ASSERT_EQ(run_skyview("horizon " + wide + " " + out + " --method march --radius 3 --directions 1024", dir).exit_code,
+            0);
+  int x = 0, y = 0;
+  {
+    GDALDatasetUniquePtr ds(GDALDataset::Open(out.c_str(), GDAL_OF_RASTER));
+    ASSERT_TRUE(ds);
+    ds->GetRasterBand(1)->GetBlockSize(&x, &y);
+    EXPECT_EQ(x, 256);
+    EXPECT_EQ(y, 208);
+    // Band names in [0, 360): the last of 1024 sectors from north.
+    EXPECT_STREQ(ds->GetRasterBand(1024)->GetDescription(), "horizon_azimuth_359.6484375");
+  }
+  ASSERT_EQ(run_skyview("horizon " + wide + " " + out +
+                            " --method march --radius 3 --directions 1024 --overwrite "
+                            "-co BLOCKYSIZE=32",
+                        dir)
+                .exit_code,
+            0);
+  GDALDatasetUniquePtr ds(GDALDataset::Open(out.c_str(), GDAL_OF_RASTER));
+  ds->GetRasterBand(1)->GetBlockSize(&x, &y);
+  EXPECT_EQ(y, 32);
 }
 
 TEST_F(CliErrors, HorizonBandsNameTheirAzimuths) {
