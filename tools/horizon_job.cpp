@@ -210,6 +210,15 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   m["SOURCE_BAND"] = std::to_string(o.band);
   m["Z_SCALE"] = number_text(o.z_scale);
   check_edge_leaves_cells(job, params.radius);
+  // Auto decides only now, on the raster's reach: a refraction given for rasters where curvature
+  // counts is accepted, but said to be unused here (even under -q: the user asked for it).
+  if (o.app && o.app->count("--refraction") > 0 && job.engine->params().curvature == "auto" &&
+      !(job.engine->curvature_coefficient(job.terrain) > 0.0)) {
+    std::fprintf(stderr,
+                 "Warning: --refraction has no effect: --curvature auto left Earth curvature off on '%s' (under "
+                 "0.01 degrees at its reach)\n",
+                 o.input.c_str());
+  }
   m["GROUND_FRAME"] = job.terrain.frame.description();
   m["EDGE_MODE"] = o.edge;
   record_method(job, o.max_error);

@@ -384,6 +384,14 @@ TEST_F(CliErrors, OptionsTheRunWouldNotUseAreRefused) {
   for (const auto& [args, message] : refused) expect_one_line_error(run_skyview(args, dir), message);
   EXPECT_FALSE(std::filesystem::exists(dir + "/o.tif"));
   EXPECT_FALSE(std::filesystem::exists(dir + "/l.las"));
+  // With --curvature auto (the default) it is a request for rasters where curvature counts: on
+  // this small one it runs, and says the refraction went unused.
+  const RunResult unused = run_skyview("svf " + good + o + " --refraction 0.2 --directions 4", dir);
+  EXPECT_EQ(unused.exit_code, 0) << unused.err;
+  EXPECT_NE(unused.err.find("Warning: --refraction has no effect: --curvature auto left Earth curvature off"),
+            std::string::npos)
+      << unused.err;
+  std::filesystem::remove(dir + "/o.tif");
   EXPECT_EQ(run_skyview("svf " + good + o + " --method raycast --rays 16 --directions 4", dir).exit_code, 0);
 }
 
