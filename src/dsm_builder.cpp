@@ -166,8 +166,12 @@ DsmResult build_dsm(const DsmOptions& o) {
     auto ds = open_raster(d);
     double gt[6];
     ds->GetGeoTransform(gt);
-    if (res <= 0) res = std::abs(gt[1]);
     const OGRSpatialReference s = srs_from(ds->GetProjectionRef(), "'" + d + "'");
+    // The DEM's cell size holds only in its own CRS (a 1 m DEM made 1° cells in EPSG:4326).
+    if (res <= 0 && !s.IsSame(&target)) {
+      throw Error("give --res: '" + d + "' is in another CRS than the output, so its cell size does not carry over");
+    }
+    if (res <= 0) res = std::abs(gt[1]);
     auto t = transform(s, target, "'" + d + "'");
     add_box(ext, gt[0], gt[3] + gt[5] * ds->GetRasterYSize(), gt[0] + gt[1] * ds->GetRasterXSize(), gt[3], t.get(),
             "'" + d + "'");
@@ -442,6 +446,7 @@ DsmResult build_dsm(const DsmOptions& o) {
   // clouds only carries buildings and goes to --dtm: the DSM already has those returns, and asking
   // for --dtm must not change it.
   out.dsm = Grid<float>(width, height, kNaN);
+  std::vector<char> burned(fp_height.size(), 0);  // a footprint with a height that reached a cell
   for (std::size_t k = 0; k < out.dsm.size(); ++k) {
     const float ground = terrain.values()[k];
     float v = cloud_terrain ? kNaN : ground;
@@ -458,7 +463,10 @@ DsmResult build_dsm(const DsmOptions& o) {
           top = ground + fp_height[f];
         }
       }
-      if (!std::isnan(top)) v = std::isnan(v) ? static_cast<float>(top) : std::max(v, static_cast<float>(top));
+      if (!std::isnan(top)) {
+        v = std::isnan(v) ? static_cast<float>(top) : std::max(v, static_cast<float>(top));
+        burned[f] = 1;
+      }
     }
     const float p = pts.values()[k];
     if (!std::isnan(p)) v = std::isnan(v) ? p : std::max(v, p);
@@ -466,8 +474,9 @@ DsmResult build_dsm(const DsmOptions& o) {
   }
   // Footprints without a height take the 90th percentile of the returns inside them.
   for (std::size_t f = 0; f < fp_height.size(); ++f) {
+    // A height above the terrain where there is no terrain (off the DEM) burns nothing: skipped.
     if (!std::isnan(fp_height[f])) {
-      ++out.report.footprints_burned;
+      ++(burned[f] ? out.report.footprints_burned : out.report.footprints_skipped);
       continue;
     }
     auto& z = fp_returns[f];
@@ -487,6 +496,11 @@ DsmResult build_dsm(const DsmOptions& o) {
   }
   if (o.fill) out.report.cells_filled = fill_nodata(out.dsm, o.fill_distance);
   if (std::all_of(out.dsm.values().begin(), out.dsm.values().end(), [](float v) { return std::isnan(v); })) {
+    if (std::any_of(fp_height.begin(), fp_height.end(), [](double h) { return !std::isnan(h); })) {
+      throw Error(
+          "nothing gave the DSM a height: footprint heights above the terrain need terrain under them "
+          "(--dem or --points), or --base-field or --absolute-heights");
+    }
     throw Error("nothing gave the DSM a height: footprints without heights need --height-field, --points or --dem");
   }
   if (!o.dems.empty() || cloud_terrain) out.dtm = std::move(terrain);

@@ -60,8 +60,14 @@ Runner setup(CLI::App& app) {
       ->check(positive_number())
       ->capture_default_str();
   app.add_flag("--fill", o->dsm.fill, "Close nodata holes (GDAL fill-nodata)");
-  app.add_option("--fill-distance", o->dsm.fill_distance, "Largest hole to close, in cells")->capture_default_str();
-  app.add_option("--z-scale", o->dsm.z_scale, "Vertical unit factor of the DEMs to metres")->capture_default_str();
+  app.add_option("--fill-distance", o->dsm.fill_distance,
+                 "How far, in cells, a nodata cell looks for heights to interpolate from (GDAL's search distance): "
+                 "cells farther than this from any height stay nodata")
+      ->check(positive_number())
+      ->capture_default_str();
+  app.add_option("--z-scale", o->dsm.z_scale, "Vertical unit factor of the DEMs to metres")
+      ->check(positive_number())
+      ->capture_default_str();
   app.add_option("--dtm", o->dtm, "Also write the terrain here: the warped DEMs, else the clouds' bare earth");
   add_output_options(app, o->out);
   app.footer(

@@ -106,6 +106,69 @@ TEST(DsmBuilder, FootprintOnAFlatDemAndACourtyard) {
   EXPECT_THROW(build_dsm(missing), Error);
 }
 
+// A building off the DEM has no terrain to stand on: it burns nothing and is counted as skipped
+// (until Dec 3 it was counted as burned). With no DEM at all the error says what is missing.
+TEST(DsmBuilder, AFootprintOffTheDemIsSkippedNotBurned) {
+  const std::string dir = dir_for("offdem");
+  const std::string dem = flat_dem(dir);
+  write_text(dir + "/b.geojson", R"({"type":"FeatureCollection",
+    "crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::32633"}},
+    "features":[
+     {"type":"Feature","properties":{"h":20},"geometry":{"type":"Polygon","coordinates":[[[500010,6400010],[500030,6400010],[500030,6400030],[500010,6400030],[500010,6400010]]]}},
+     {"type":"Feature","properties":{"h":20},"geometry":{"type":"Polygon","coordinates":[[[500150,6400010],[500170,6400010],[500170,6400030],[500150,6400030],[500150,6400010]]]}}]})");
+  DsmOptions d;
+  d.dems = {dem};
+  d.footprints = dir + "/b.geojson";
+  d.height_field = "h";
+  const DsmResult r = build_dsm(d);
+  EXPECT_EQ(r.report.footprints_burned, 1);
+  EXPECT_EQ(r.report.footprints_skipped, 1);
+  DsmOptions alone = d;
+  alone.dems.clear();
+  try {
+    build_dsm(alone);
+    ADD_FAILURE() << "no terrain: expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("footprint heights above the terrain need terrain under them"),
+              std::string::npos)
+        << e.what();
+  }
+  // The DEM's 1 m cells mean nothing in degrees: --res is asked for.
+  DsmOptions degrees = d;
+  degrees.t_srs = "EPSG:4326";
+  try {
+    build_dsm(degrees);
+    ADD_FAILURE() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("give --res"), std::string::npos) << e.what();
+  }
+}
+
+// Writers leave a LAS header's min and max stale: the grid comes from the points themselves (a
+// header whose max x cut the cloud in half dropped half its returns without a word until Dec 3).
+TEST(DsmBuilder, StaleLasHeaderBoundsDoNotCropTheCloud) {
+  const std::string dir = dir_for("stale");
+  std::vector<LasPoint> pts;
+  for (int i = 0; i < 20; ++i) pts.push_back({500000.5 + i, 6400000.5 + i, 10.0 + i, 0, 1, 1, 2});
+  LasWriteOptions o;
+  o.crs_wkt = wkt("EPSG:32633");
+  o.offset[0] = 500000, o.offset[1] = 6400000;
+  write_las(dir + "/p.las", pts, o);
+  {
+    std::fstream f(dir + "/p.las", std::ios::in | std::ios::out | std::ios::binary);
+    const double stale_max_x = 500005.0;
+    f.seekp(179);  // max X in the public header block
+    f.write(reinterpret_cast<const char*>(&stale_max_x), sizeof stale_max_x);
+  }
+  DsmOptions d;
+  d.points = {dir + "/p.las"};
+  d.res = 1.0;
+  const DsmResult r = build_dsm(d);
+  EXPECT_EQ(r.report.points_read, 20u);
+  EXPECT_EQ(r.report.points_used, 20u);
+  EXPECT_GE(r.dsm.width(), 20);
+}
+
 TEST(DsmBuilder, UtmAndDegreesDemsLandOnTheSameGrid) {
   const std::string dir = dir_for("crs");
   const std::string utm = flat_dem(dir);
@@ -251,6 +314,15 @@ TEST(DsmBuilder, RealLidarSampleGridsAllItsPoints) {
   EXPECT_EQ(r.report.points_read, 1065u);
   EXPECT_EQ(r.report.points_used, 1065u);
   EXPECT_GT(r.report.cells_from_points, 500);
+  // simple1_3.las holds its unscaled integers as the header's min and max.
+  const std::string raw = std::string(SKYVIEW_SHARED_DIR) + "/sample_data/las/simple1_3.las";
+  DsmOptions e;
+  e.points = {raw};
+  e.res = 5.0;
+  e.t_srs = "EPSG:32610";
+  const DsmResult q = build_dsm(e);
+  EXPECT_EQ(q.report.points_used, q.report.points_read);
+  EXPECT_GT(q.report.points_read, 0u);
 }
 
 }  // namespace
