@@ -79,6 +79,13 @@ int run(const SkymapOptions& o) {
                  "read as 0\n",
                  weather->missing_solar_values, o.epw.c_str());
   }
+  // Even under -q: a whole-file total from a cut file looks like a year's and is not.
+  if (weather && weather->declared_hours > 0 && weather->records.size() < std::size_t(weather->declared_hours)) {
+    std::fprintf(stderr,
+                 "Warning: '%s' holds %zu hourly records where its DATA PERIODS declares %d: it looks cut short, "
+                 "and totals cover only the hours it holds\n",
+                 o.epw.c_str(), weather->records.size(), weather->declared_hours);
+  }
   Site site;
   if (!o.lat && !weather) throw Error("--lat and --lon are required");
   site.latitude_deg = o.lat ? *o.lat : weather->location.latitude_deg;

@@ -32,11 +32,15 @@ struct EpwFile {
   bool hours_in_utc = false;               // PVGIS convention
   double irradiance_time_offset_h = -0.5;  // instant relative to the end of the hour
   int missing_solar_values = 0;
+  // Hours of the one data period DATA PERIODS declares (a 365-day year: 8760 for 1/1 to 12/31); 0
+  // where it declares several or none readable. A file holding fewer records is truncated.
+  int declared_hours = 0;
   std::vector<EpwRecord> records;
 };
 
 // Throws skyview::Error (one line, naming the file and line) for an unreadable file, a missing or
-// malformed LOCATION line, no data records, or a record with too few fields or a bad date.
+// malformed LOCATION line, no DATA PERIODS line before the records, no data records, or a record
+// with too few fields or a bad date.
 EpwFile read_epw(const std::string& path);
 
 }  // namespace skyview

@@ -65,6 +65,31 @@ int days_in_month(int year, int month) {
   return month == 2 && leap ? 29 : days[month - 1];
 }
 
+// The hours of the one period a DATA PERIODS line declares ("DATA PERIODS,1,1,Data,Sunday, 1/ 1,12/31"),
+// in a 365-day year; 0 where it declares several or its dates are unreadable.
+int declared_hours(const std::vector<std::string>& fields) {
+  double periods = 0;
+  if (fields.size() < 7 || !parse_number(fields[1], periods) || periods != 1.0) return 0;
+  // "M/D", or "YYYY/M/D" (the Athens sample's generator writes the year too).
+  auto day_of_year = [](const std::string& text) {
+    const std::size_t slash = text.rfind('/');
+    const std::size_t before =
+        slash == std::string::npos || slash == 0 ? std::string::npos : text.rfind('/', slash - 1);
+    const std::size_t month_at = before == std::string::npos ? 0 : before + 1;
+    double month = 0, day = 0;
+    if (slash == std::string::npos || !parse_number(text.substr(month_at, slash - month_at), month) ||
+        !parse_number(text.substr(slash + 1), day) || month < 1 || month > 12 || day < 1 ||
+        day > days_in_month(2001, static_cast<int>(month)))
+      return -1;
+    int n = static_cast<int>(day);
+    for (int m = 1; m < static_cast<int>(month); ++m) n += days_in_month(2001, m);
+    return n;
+  };
+  const int first = day_of_year(fields[5]), last = day_of_year(fields[6]);
+  if (first < 1 || last < 1) return 0;
+  return 24 * (last >= first ? last - first + 1 : 365 - first + 1 + last);
+}
+
 }  // namespace
 
 EpwFile read_epw(const std::string& path) {
@@ -115,6 +140,7 @@ EpwFile read_epw(const std::string& path) {
                "DATA PERIODS gives " + trim(fields[2]) +
                    " records per hour; skyview reads hourly EPW files only (one record per hour)");
         }
+        file.declared_hours = declared_hours(fields);
         in_data = true;
       }
       continue;
@@ -144,6 +170,7 @@ EpwFile read_epw(const std::string& path) {
     file.records.push_back(r);
   }
   if (!have_location) throw Error(path + ": not an EPW file (no LOCATION line)");
+  if (!in_data) throw Error(path + ": no DATA PERIODS line (the last of the EPW header's eight) before the records");
   if (file.records.empty()) throw Error(path + ": EPW file has no data records");
   const double zone_h = file.hours_in_utc ? 0.0 : file.location.time_zone_h;
   for (EpwRecord& r : file.records) {

@@ -108,6 +108,37 @@ TEST(Epw, RepeatedHoursAndSubHourlyDataAreRefused) {
   std::filesystem::remove_all(dir);
 }
 
+// A file cut short keeps what it holds but says how much its header declared; a file without its
+// DATA PERIODS line is named for that, not for having no records (until Dec 3).
+TEST(Epw, CutShortAndHeaderlessFilesSayWhatIsWrong) {
+  SKYVIEW_REQUIRE_SHARED(path, "weather/chicago.epw");
+  EXPECT_EQ(read_epw(path).declared_hours, 8760);
+  const std::string athens = std::string(SKYVIEW_SHARED_DIR) + "/sample_data/city_athens/athens_2023.epw";
+  if (std::filesystem::exists(athens)) {
+    EXPECT_EQ(read_epw(athens).declared_hours, 8760) << "its period reads 2023/ 1/ 1 to 2023/12/31";
+  }
+  std::ifstream in(path, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::filesystem::path dir = skyview::test::temp_dir("epw-cut");
+  std::size_t cut = 0;
+  for (int line = 0; line < 100; ++line) cut = text.find('\n', cut) + 1;
+  const std::string short_file = (dir / "short.epw").string();
+  std::ofstream(short_file, std::ios::binary) << text.substr(0, cut);
+  const EpwFile f = read_epw(short_file);
+  EXPECT_EQ(f.records.size(), 92u);
+  EXPECT_EQ(f.declared_hours, 8760);
+  const std::size_t periods = text.find("DATA PERIODS");
+  const std::string headless = (dir / "headless.epw").string();
+  std::ofstream(headless, std::ios::binary) << text.substr(0, periods) + text.substr(text.find('\n', periods) + 1);
+  try {
+    read_epw(headless);
+    ADD_FAILURE() << "accepted a file without DATA PERIODS";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no DATA PERIODS line"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Epw, BadInputIsOneLineError) {
   const std::filesystem::path dir = skyview::test::temp_dir("epw-test");
   const std::string bad = (dir / "bad.epw").string();
