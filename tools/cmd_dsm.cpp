@@ -106,7 +106,9 @@ Runner setup(CLI::App& app) {
                    {"POINTS_READ", std::to_string(rep.points_read)},
                    {"POINTS_USED", std::to_string(rep.points_used)},
                    {"POINTS_REMOVED_AS_NOISE", std::to_string(rep.points_removed_as_noise)},
-                   {"GROUND_FROM", rep.ground_source.empty() ? "all returns" : rep.ground_source},
+                   // Which returns were taken as ground, where any were: "all returns" read as if
+                   // every return had been, with --classes 6 too.
+                   {"GROUND_FROM", rep.ground_source.empty() ? "none (no ground asked for)" : rep.ground_source},
                    {"CELLS_FILLED", std::to_string(rep.cells_filled)},
                    {"FOOTPRINTS_BURNED", std::to_string(rep.footprints_burned)},
                    {"FOOTPRINTS_FROM_CLOUD", std::to_string(rep.footprints_from_cloud)},

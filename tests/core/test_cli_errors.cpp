@@ -78,6 +78,21 @@ TEST_F(CliErrors, SynthAndBenchRefuseWhatTheyCannotMake) {
   EXPECT_FALSE(std::filesystem::exists(dir + "/b"));
 }
 
+// GROUND_FROM says which returns were taken as ground: class 2 with --ground-only on a classified
+// cloud, none where no ground was asked for (it read "all returns" until Dec 3, with --classes 6 too).
+TEST_F(CliErrors, DsmSaysWhichReturnsWereGround) {
+  ASSERT_EQ(run_skyview("synth lidar " + dir + "/d.las --size 64", dir).exit_code, 0);
+  const std::pair<std::string, std::string> runs[] = {{"--classes 6", "none (no ground asked for)"},
+                                                      {"--ground-only", "class 2"}};
+  for (const auto& [option, ground] : runs) {
+    const std::string out = dir + "/dsm.tif";
+    ASSERT_EQ(run_skyview("dsm " + out + " --points " + dir + "/d.las " + option + " --overwrite", dir).exit_code, 0);
+    GDALDatasetUniquePtr ds(GDALDataset::Open(out.c_str(), GDAL_OF_RASTER));
+    ASSERT_TRUE(ds);
+    EXPECT_STREQ(ds->GetMetadataItem("GROUND_FROM"), ground.c_str()) << option;
+  }
+}
+
 TEST_F(CliErrors, SingleCellRaster) {
   write_terrain(dir + "/one.tif", rasterize(circular_pit(5, 5), 1, 1, local_grid(1, 1, 1.0)), {});
   expect_one_line_error(run_skyview("svf " + dir + "/one.tif " + dir + "/o.tif", dir), "single cell");
