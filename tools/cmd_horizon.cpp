@@ -1,6 +1,4 @@
 // skyview horizon: horizon elevation angle per direction, one band per azimuth.
-#include <cpl_port.h>
-
 #include <cmath>
 #include <limits>
 #include <string>
@@ -43,25 +41,9 @@ Runner setup(CLI::App& app) {
     }
     // Bands are written as the method finds them: the sweep's directions one at a time (only those
     // in progress are held), the other methods' in blocks of whole rows, a multiple of the
-    // output's tile height so that each tile is compressed once. Memory does not grow with the
-    // number of directions.
-    // A tile row of every band is held until it is compressed, so the other methods' GeoTIFF tiles
-    // are no taller than the rows the budget holds (256 rows of 1000 cells at 1024 directions held
-    // 1.2 GB, not 256 MB): 16 to 256 rows, or strips where even 16 are too many. -co TILED or
-    // BLOCKYSIZE keeps the user's own.
-    if (!job.engine->streams_directions() && o->out.format == "GTiff") {
-      bool users = false;
-      for (const std::string& kv : o->out.creation_options) {
-        const std::string key = kv.substr(0, kv.find('='));
-        users = users || EQUAL(key.c_str(), "TILED") || EQUAL(key.c_str(), "BLOCKYSIZE");
-      }
-      const int fit = rows_in_budget(*job.engine, w, kHorizonBlockBytes);
-      if (!users && fit < 16) {
-        wo.creation_options.insert(wo.creation_options.begin(), {"TILED=NO", "BLOCKYSIZE=" + std::to_string(fit)});
-      } else if (!users && fit < 256) {
-        wo.creation_options.insert(wo.creation_options.begin(), "BLOCKYSIZE=" + std::to_string(fit / 16 * 16));
-      }
-    }
+    // output's tile height so that each tile is compressed once, and tiles no taller than such a
+    // block. Memory does not grow with the number of directions.
+    if (!job.engine->streams_directions()) wo.rows_at_once = rows_in_budget(*job.engine, w, kHorizonBlockBytes);
     BandWriter out(o->output, w, h, n, job.terrain.georef, wo);
     const double rotation = job.sector_rotation * 180.0 / M_PI;
     for (int k = 0; k < n; ++k) {

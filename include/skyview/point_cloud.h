@@ -2,8 +2,10 @@
 // Point clouds of every supported format behind one streaming interface, so the DSM builder
 // grids them all the same way: LAS 1.0-1.4 (read here, see las_file.h), PLY and PCD (read with
 // PCL, which loads a whole file), and plain XYZ text (streamed).
+#include <algorithm>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -30,6 +32,18 @@ class PointCloud {
 
  protected:
   explicit PointCloud(std::string path) : path_(std::move(path)) {}
+  // bounds_ from the points themselves: start, include each, then settle (all 0 when none was).
+  void start_bounds() {
+    bounds_[0] = bounds_[1] = std::numeric_limits<double>::infinity();
+    bounds_[2] = bounds_[3] = -std::numeric_limits<double>::infinity();
+  }
+  void include_in_bounds(double x, double y) {
+    bounds_[0] = std::min(bounds_[0], x), bounds_[1] = std::min(bounds_[1], y);
+    bounds_[2] = std::max(bounds_[2], x), bounds_[3] = std::max(bounds_[3], y);
+  }
+  void settle_bounds() {
+    if (!(bounds_[0] <= bounds_[2])) bounds_[0] = bounds_[1] = bounds_[2] = bounds_[3] = 0.0;
+  }
   std::string path_, crs_wkt_;
   std::uint64_t point_count_ = 0;
   double bounds_[4] = {0, 0, 0, 0};

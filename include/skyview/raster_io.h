@@ -56,6 +56,9 @@ struct WriteOptions {
   bool overwrite = false;
   float nodata = -9999.0f;
   std::map<std::string, std::string> metadata;  // dataset-level (run parameters)
+  // Rows of every band BandWriter is handed at a time (0: any): GeoTIFF's default tiles are made no
+  // taller, since a tile row of every band is held until it is compressed.
+  int rows_at_once = 0;
 };
 
 // Writes a float32 raster a band at a time, so that a product of many bands need not be held

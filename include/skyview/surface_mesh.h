@@ -6,6 +6,7 @@
 // other quad left open (nodata never occludes). Skirts hang from every edge that only one triangle
 // holds, so that a ray running exactly along such an edge still meets it (Embree's watertight test
 // counts hits on an edge only where two triangles share it).
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -27,6 +28,15 @@ struct SurfaceMesh {
   std::size_t surface_triangles = 0;
   std::vector<SkirtVertex> skirt_vertices;
 };
+
+// Whether the quad of cells a = (c, r), b = (c + 1, r), d = (c, r + 1), e = (c + 1, r + 1) (heights,
+// NaN for nodata) is split along a-e in the mesh of heights times `sign`: along its lower diagonal,
+// or, with one nodata corner, along the diagonal that leaves the three valid corners a triangle.
+inline bool quad_splits_along_ae(double za, double zb, double zd, double ze, double sign) {
+  if (std::isnan(za) || std::isnan(ze)) return false;
+  if (std::isnan(zb) || std::isnan(zd)) return true;
+  return sign * (za + ze) <= sign * (zb + zd);
+}
 
 // The mesh of `terrain`'s heights times `sign` (-1: the lowest angles' negated heights, whose quads
 // may split along the other diagonal and whose skirts hang upwards), its skirts hanging

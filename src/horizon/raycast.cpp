@@ -211,13 +211,8 @@ class TerrainMesh {
     // Along a grid line only its two ends count.
     if (fy == 0.0) return fx == 0.0 ? za : za + fx * (zb - za);
     if (fx == 0.0) return za + fy * (zd - za);
-    // The split as surface_mesh builds it: along the lower diagonal, or, with a nodata corner, the
-    // diagonal that leaves the valid half (a NaN sum would otherwise pick the other, and read NaN
-    // in the valid half too).
-    const bool along_ae = std::isnan(za) || std::isnan(ze)   ? false
-                          : std::isnan(zb) || std::isnan(zd) ? true
-                                                             : sign_ * (za + ze) <= sign_ * (zb + zd);
-    if (along_ae) {  // split along a-e
+    // The split as surface_mesh builds it (in a half quad, the valid triangle's).
+    if (quad_splits_along_ae(za, zb, zd, ze, sign_)) {
       return fx >= fy ? za + fx * (zb - za) + fy * (ze - zb) : za + fy * (zd - za) + fx * (ze - zd);
     }
     return fx + fy <= 1.0 ? za + fx * (zb - za) + fy * (zd - za) : ze + (1 - fx) * (zd - ze) + (1 - fy) * (zb - ze);

@@ -91,9 +91,8 @@ SurfaceMesh surface_mesh(const Terrain& t, double sign, double skirt_drop) {
       const int valid = va + vb + vd + ve;
       if (valid == 4) {
         // Split along the lower diagonal (in this mesh's sign): the crease is a valley.
-        const double ae = sign * (double(t.heights(c, r)) + t.heights(c + 1, r + 1));
-        const double bd = sign * (double(t.heights(c + 1, r)) + t.heights(c, r + 1));
-        if (ae <= bd) {
+        if (quad_splits_along_ae(t.heights(c, r), t.heights(c + 1, r), t.heights(c, r + 1), t.heights(c + 1, r + 1),
+                                 sign)) {
           idx.insert(idx.end(), {a, b, e, a, e, d});
         } else {
           idx.insert(idx.end(), {a, b, d, b, e, d});

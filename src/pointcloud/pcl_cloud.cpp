@@ -73,16 +73,14 @@ class PclCloud final : public PointCloud {
     }
     const std::size_t n = static_cast<std::size_t>(cloud_.width) * cloud_.height;
     if (cloud_.data.size() < n * cloud_.point_step) throw Error("'" + path + "' is truncated");
-    bounds_[0] = bounds_[1] = std::numeric_limits<double>::infinity();
-    bounds_[2] = bounds_[3] = -std::numeric_limits<double>::infinity();
+    start_bounds();
     for (std::size_t i = 0; i < n; ++i) {
       const LasPoint p = point(i);
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) continue;  // PCD's NaN = no return
-      bounds_[0] = std::min(bounds_[0], p.x), bounds_[1] = std::min(bounds_[1], p.y);
-      bounds_[2] = std::max(bounds_[2], p.x), bounds_[3] = std::max(bounds_[3], p.y);
+      include_in_bounds(p.x, p.y);
       ++point_count_;
     }
-    if (point_count_ == 0) bounds_[0] = bounds_[1] = bounds_[2] = bounds_[3] = 0.0;
+    settle_bounds();
   }
 
   void read_points(const std::function<void(const std::vector<LasPoint>&)>& chunk,

@@ -5,7 +5,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 
 #include "skyview/error.h"
 
@@ -22,15 +21,11 @@ class LasCloud final : public PointCloud {
     // The bounds from the points, not the header's min and max: writers leave those stale (a grid
     // from them dropped half a cloud without a word) or raw (simple1_3.las, a LAS sample, holds its
     // unscaled integers there). One more pass over the file, as the text clouds make.
-    bounds_[0] = bounds_[1] = std::numeric_limits<double>::infinity();
-    bounds_[2] = bounds_[3] = -std::numeric_limits<double>::infinity();
+    start_bounds();
     reader_.read_points([this](const std::vector<LasPoint>& points) {
-      for (const LasPoint& p : points) {
-        bounds_[0] = std::min(bounds_[0], p.x), bounds_[1] = std::min(bounds_[1], p.y);
-        bounds_[2] = std::max(bounds_[2], p.x), bounds_[3] = std::max(bounds_[3], p.y);
-      }
+      for (const LasPoint& p : points) include_in_bounds(p.x, p.y);
     });
-    if (point_count_ == 0) bounds_[0] = bounds_[1] = bounds_[2] = bounds_[3] = 0.0;
+    settle_bounds();
   }
   void read_points(const std::function<void(const std::vector<LasPoint>&)>& chunk,
                    std::size_t chunk_points) const override {

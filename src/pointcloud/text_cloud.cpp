@@ -37,14 +37,12 @@ bool is_comment_or_blank(const std::string& line) {
 class TextCloud final : public PointCloud {
  public:
   explicit TextCloud(const std::string& path) : PointCloud(path) {
-    bounds_[0] = bounds_[1] = std::numeric_limits<double>::infinity();
-    bounds_[2] = bounds_[3] = -std::numeric_limits<double>::infinity();
+    start_bounds();
     scan([&](const double* p) {
-      bounds_[0] = std::min(bounds_[0], p[0]), bounds_[1] = std::min(bounds_[1], p[1]);
-      bounds_[2] = std::max(bounds_[2], p[0]), bounds_[3] = std::max(bounds_[3], p[1]);
+      include_in_bounds(p[0], p[1]);
       ++point_count_;
     });
-    if (point_count_ == 0) bounds_[0] = bounds_[1] = bounds_[2] = bounds_[3] = 0.0;
+    settle_bounds();
   }
 
   void read_points(const std::function<void(const std::vector<LasPoint>&)>& chunk,

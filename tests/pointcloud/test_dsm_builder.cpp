@@ -40,6 +40,14 @@ std::string flat_dem(const std::string& dir) {
 
 void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
+// A GeoJSON layer in UTM 33N holding `features` (the text of its features array's items).
+void write_utm_features(const std::string& path, const std::string& features) {
+  write_text(path, R"({"type":"FeatureCollection",
+    "crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::32633"}},
+    "features":[)" + features +
+                       "]}");
+}
+
 TEST(DsmBuilder, KnownPointsGiveKnownCellValuesForEachStatistic) {
   const std::string dir = dir_for("stats");
   // Three returns in cell (2, 1) of a 1 m grid anchored at (0, 10), one in cell (0, 0).
@@ -78,13 +86,11 @@ TEST(DsmBuilder, FootprintOnAFlatDemAndACourtyard) {
   const std::string dir = dir_for("footprints");
   const std::string dem = flat_dem(dir);
   // A 20 m square building of height 20, and a 40 m block with a 10 m courtyard of height 15.
-  write_text(dir + "/b.geojson", R"({"type":"FeatureCollection",
-    "crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::32633"}},
-    "features":[
+  write_utm_features(dir + "/b.geojson", R"(
      {"type":"Feature","properties":{"h":20},"geometry":{"type":"Polygon","coordinates":[[[500010,6400010],[500030,6400010],[500030,6400030],[500010,6400030],[500010,6400010]]]}},
      {"type":"Feature","properties":{"h":15},"geometry":{"type":"Polygon","coordinates":[
         [[500050,6400050],[500090,6400050],[500090,6400090],[500050,6400090],[500050,6400050]],
-        [[500065,6400065],[500075,6400065],[500075,6400075],[500065,6400075],[500065,6400065]]]}}]})");
+        [[500065,6400065],[500075,6400065],[500075,6400075],[500065,6400075],[500065,6400065]]]}})");
   DsmOptions d;
   d.dems = {dem};
   d.footprints = dir + "/b.geojson";
@@ -111,11 +117,9 @@ TEST(DsmBuilder, FootprintOnAFlatDemAndACourtyard) {
 TEST(DsmBuilder, AFootprintOffTheDemIsSkippedNotBurned) {
   const std::string dir = dir_for("offdem");
   const std::string dem = flat_dem(dir);
-  write_text(dir + "/b.geojson", R"({"type":"FeatureCollection",
-    "crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::32633"}},
-    "features":[
+  write_utm_features(dir + "/b.geojson", R"(
      {"type":"Feature","properties":{"h":20},"geometry":{"type":"Polygon","coordinates":[[[500010,6400010],[500030,6400010],[500030,6400030],[500010,6400030],[500010,6400010]]]}},
-     {"type":"Feature","properties":{"h":20},"geometry":{"type":"Polygon","coordinates":[[[500150,6400010],[500170,6400010],[500170,6400030],[500150,6400030],[500150,6400010]]]}}]})");
+     {"type":"Feature","properties":{"h":20},"geometry":{"type":"Polygon","coordinates":[[[500150,6400010],[500170,6400010],[500170,6400030],[500150,6400030],[500150,6400010]]]}})");
   DsmOptions d;
   d.dems = {dem};
   d.footprints = dir + "/b.geojson";
@@ -263,10 +267,8 @@ TEST(DsmBuilder, ImplausibleFootprintsAndGridsAreRefused) {
   const std::string dir = dir_for("implausible");
   const std::string dem = flat_dem(dir);
   auto footprints = [&](const std::string& name, const std::string& props, const std::string& ring) {
-    write_text(dir + "/" + name, R"({"type":"FeatureCollection",
-      "crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::32633"}},
-      "features":[{"type":"Feature","properties":)" +
-                                     props + R"(,"geometry":{"type":"Polygon","coordinates":[[)" + ring + R"(]]}}]})");
+    write_utm_features(dir + "/" + name, R"({"type":"Feature","properties":)" + props +
+                                             R"(,"geometry":{"type":"Polygon","coordinates":[[)" + ring + "]]}}");
     return dir + "/" + name;
   };
   const std::string square = "[500010,6400010],[500030,6400010],[500030,6400030],[500010,6400030],[500010,6400010]";
