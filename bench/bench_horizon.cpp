@@ -258,8 +258,26 @@ BENCHMARK(BM_Sweep16)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);
-BENCHMARK(BM_Sweep15)->Args({64, 2})->Args({16, 1})->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
-BENCHMARK(BM_Sweep16Streamed)->Args({64, 2})->Args({16, 1})->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+BENCHMARK(BM_Sweep15)
+    ->Args({64, 2})
+    ->Args({64, 1})
+    ->Args({48, 1})
+    ->Args({16, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+BENCHMARK(BM_Sweep16Streamed)
+    ->Args({64, 2})
+    ->Args({64, 1})
+    ->Args({56, 1})
+    ->Args({48, 1})
+    ->Args({40, 1})
+    ->Args({32, 1})
+    ->Args({16, 2})
+    ->Args({16, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
 BENCHMARK(BM_Sweep16WithLower)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_SvfWhole16)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_SvfStreamed16)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);

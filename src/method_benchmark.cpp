@@ -21,7 +21,7 @@ std::string BenchConfig::label() const {
   std::ostringstream s;
   s << method << " d=" << params.directions;
   if (method == "sampled") s << " s=" << params.samples;
-  if (method == "sweep") s << " near=" << params.samples << (params.far_lines == 1 ? " 1 line" : "");
+  if (method == "sweep") s << " near=" << params.samples << (params.far_lines == 1 ? " 1 line" : " 2 lines");
   if (method == "sampled" || method == "march") s << " r=" << (params.radius == 0 ? 500 : params.radius);
   return s.str();
 }
@@ -272,13 +272,14 @@ void plot_bench(const std::string& png_path, const std::string& title, const std
   const bool continuous = std::any_of(results.begin(), results.end(), [](auto& r) { return r.has_continuous(); });
   cv::putText(img, continuous ? "p99 |svf - continuous svf|" : "p99 |svf error|", cv::Point(5, top - 10),
               cv::FONT_HERSHEY_SIMPLEX, 0.5, black);
-  // One series per method, and the sweep's one-far-line variant apart: it makes its own front.
+  // One series per method, and the sweep's two far-line variants apart: each makes its own front.
   auto series = [](const BenchConfig& c) {
-    return c.method == "sweep" && c.params.far_lines == 1 ? std::string("sweep, 1 far line") : c.method;
+    if (c.method != "sweep") return c.method;
+    return std::string(c.params.far_lines == 1 ? "sweep, 1 far line" : "sweep, 2 far lines");
   };
   const std::map<std::string, cv::Scalar> colour{{"sampled", cv::Scalar(40, 120, 230)},
                                                  {"march", cv::Scalar(60, 170, 60)},
-                                                 {"sweep", cv::Scalar(200, 60, 60)},
+                                                 {"sweep, 2 far lines", cv::Scalar(200, 60, 60)},
                                                  {"sweep, 1 far line", cv::Scalar(200, 60, 200)}};
   std::vector<const BenchResult*> front;
   for (const auto& r : results) {

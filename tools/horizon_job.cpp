@@ -29,8 +29,8 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
                  "Per direction: samples (sampled, default 16) or exact near steps (sweep, default 64); 0 = default")
       ->capture_default_str();
   app.add_option("--far-lines", o.params.far_lines,
-                 "Sweep beyond its near steps: tangents to the hulls of both lines beside a cell, interpolated (2), "
-                 "or of the nearer only (1: faster, about as accurate as 2 with half the near steps)")
+                 "Sweep beyond its near steps: tangent to the hull of the nearer line beside a cell (1), or to both "
+                 "lines' hulls, interpolated (2: slower, about as accurate as 1 with twice the near steps)")
       ->check(CLI::IsMember({1, 2}))
       ->capture_default_str();
   app.add_option(

@@ -30,9 +30,9 @@ AzimuthOrigin azimuth_origin_named(std::string_view name);
 struct HorizonParams {
   int directions = 16;             // azimuth sectors, clockwise from the first (azimuth_origin)
   int samples = 0;                 // per direction: samples (sampled, default 16), exact near
-                                   // crossings before the hulls (sweep, default 64); 0 = default
-  int far_lines = 2;               // sweep: lines whose hulls a cell asks beyond its near steps,
-                                   // 2 (slopes interpolated by its offset) or 1 (the nearer)
+                                   // steps before the hulls (sweep, default 64); 0 = default
+  int far_lines = 1;               // sweep: lines whose hulls a cell asks beyond its near steps,
+                                   // 1 (the nearer) or 2 (slopes interpolated by its offset)
   double radius = 0.0;             // search radius in metres; 0 = method default (unlimited for sweep)
   std::uint64_t seed = 0;          // per-cell rotation seed (sampled method)
   bool lower = false;              // also the lowest elevation angle per direction (negative openness)

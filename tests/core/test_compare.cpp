@@ -36,6 +36,7 @@ TEST(BenchReport, NamesRadiiAndRunsFinerThanTheReference) {
   configs[0].method = "march", configs[0].params.directions = 16;
   configs[1].method = "march", configs[1].params.directions = 8, configs[1].params.radius = 7.5;
   configs[2].method = "sweep", configs[2].params.directions = 32, configs[2].params.samples = 64;
+  configs[2].params.far_lines = 2;
   for (auto& c : configs) c.params.curvature = "off";
   const auto results = run_bench(t, configs, ref, 1, nullptr);
   const nlohmann::json j = bench_to_json("pit.tif", ref, results);
@@ -48,7 +49,7 @@ TEST(BenchReport, NamesRadiiAndRunsFinerThanTheReference) {
   EXPECT_EQ(j["results"][2]["reference_limited"], true);
   EXPECT_LT(j["results"][0]["svf"]["max_abs"].get<double>(), 0.01) << "the march on the reference's surface";
   const std::string md = bench_to_markdown("pit.tif", ref, results);
-  EXPECT_NE(md.find("| sweep d=32 near=64 † |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| sweep d=32 near=64 2 lines † |"), std::string::npos) << md;
   EXPECT_EQ(md.find("| march d=16 r=500 † |"), std::string::npos) << md;
   // Beside the reference, the near-continuous svf of 1024 sectors at (here all 225) cells: finer
   // sectors come closer to it.

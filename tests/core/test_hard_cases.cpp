@@ -9,8 +9,8 @@ using namespace skyview::test;
 
 namespace {
 
-// "sweep1": the sweep with one far line (test_support.h).
-const char* kExactMethods[] = {"march", "sweep", "sweep1", "raycast"};
+// "sweep2": the sweep with two far lines (test_support.h).
+const char* kExactMethods[] = {"march", "sweep", "sweep2", "raycast"};
 
 // All three read the same mesh exactly; the ray cast brackets horizons to 1e-5 rad (rays closer to
 // a surface may graze it), the march and the sweep are exact to float precision.
@@ -82,7 +82,7 @@ TEST(HardCases, OneRowAndOneColumnRasters) {
   const int n = 61;
   Terrain row = rasterize([](double e, double) { return e > 19.5 ? 10.0 : 0.0; }, n, 1, local_grid(n, 1, 1.0));
   Terrain col = rasterize([](double, double nn) { return nn > 19.5 ? 10.0 : 0.0; }, 1, n, local_grid(1, n, 1.0));
-  for (const char* m : {"march", "sweep", "sweep1", "raycast", "sampled"}) {
+  for (const char* m : {"march", "sweep", "sweep2", "raycast", "sampled"}) {
     const HorizonField fr = horizons(row, m, 4), fc = horizons(col, m, 4);
     expect_sane(row, fr, m);
     expect_sane(col, fc, m);
@@ -100,7 +100,7 @@ TEST(HardCases, NodataHolesAndBordersStayNodataAndNeverOcclude) {
   for (int r = 30; r < 40; ++r) {
     for (int c = 30; c < 45; ++c) t.heights(c, r) = NAN;  // hole
   }
-  for (const char* m : {"march", "sweep", "sweep1", "raycast", "sampled"}) expect_sane(t, horizons(t, m, 16, true), m);
+  for (const char* m : {"march", "sweep", "sweep2", "raycast", "sampled"}) expect_sane(t, horizons(t, m, 16, true), m);
 }
 
 // A city framed by nodata on two sides (a collar, as clipped tiles have), then also holed in the

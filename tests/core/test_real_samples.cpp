@@ -18,10 +18,13 @@ std::string shared_file(const std::string& rel) {
 #define REQUIRE_SHARED(path) \
   if ((path).empty()) GTEST_SKIP() << "../shared/sample_data is absent: real-data test skipped"
 
-SkyViewProducts products_of(const Terrain& t, const std::string& method, int directions, int far_lines = 2) {
+// `near_steps` and `far_lines` for the sweep: 0 keeps the defaults (64 and 1).
+SkyViewProducts products_of(const Terrain& t, const std::string& method, int directions, int near_steps = 0,
+                            int far_lines = 0) {
   HorizonParams p;
   p.directions = directions;
-  p.far_lines = far_lines;
+  if (near_steps > 0) p.samples = near_steps;
+  if (far_lines > 0) p.far_lines = far_lines;
   p.rays = 0;
   p.curvature = "off";
   if (method == "march") p.radius = 1000.0;
@@ -46,8 +49,8 @@ TEST(RealSamples, GothenburgSweepAndMarchAgainstTheRayCastReference) {
   RecordProperty("march_p99", std::to_string(march.p99));
   std::printf("Gothenburg, %d directions: sweep p99 %.4f rmse %.4f; march p99 %.4f rmse %.4f\n", n, sweep.p99,
               sweep.rmse, march.p99, march.rmse);
-  // Measured: sweep 0.0003, march 0.0000 (both read row and column crossings, where the shared
-  // mesh peaks; the sweep with its default 64 exact near steps).
+  // Measured: sweep 0.0004 (0.0003 with two far lines, the default until Dec 3),
+  // march 0.0000 (both read row and column crossings, where the shared mesh peaks).
   EXPECT_LT(march.p99, 0.002);
   EXPECT_LT(sweep.p99, 0.005);
   EXPECT_LT(std::abs(sweep.bias), 0.002);
@@ -63,14 +66,14 @@ TEST(RealSamples, BundledCitySweepAndMarchAgainstTheRayCastReference) {
   const ErrorStats march = compare_to_reference(products_of(t, "march", n).svf, ref.svf);
   std::printf("city.tif, %d directions: sweep p99 %.4f rmse %.4f; march p99 %.4f rmse %.4f\n", n, sweep.p99, sweep.rmse,
               march.p99, march.rmse);
-  EXPECT_LT(sweep.p99, 0.005);
+  // The defaults, 64 near steps and one far line: within the 0.005 with room to spare
+  // (measured 0.0036 here; 0.0023 at 16 directions, 0.0028 at 64).
+  EXPECT_LT(sweep.p99, 0.0045);
   EXPECT_LT(march.p99, 0.01);
-  // One far line: as accurate as two with half the near steps (docs/benchmarks.md), so within the
-  // issue's 0.005 at the default 64 too.
-  const ErrorStats one = compare_to_reference(products_of(t, "sweep", n, 1).svf, ref.svf);
-  std::printf("city.tif, %d directions: sweep with one far line p99 %.4f\n", n, one.p99);
-  EXPECT_LT(one.p99, 0.005);
-  EXPECT_GT(one.p99, sweep.p99);  // it does change the answer
+  // Two far lines: slower and closer (measured 0.0021 here).
+  const ErrorStats two = compare_to_reference(products_of(t, "sweep", n, 0, 2).svf, ref.svf);
+  std::printf("city.tif, %d directions: sweep with two far lines p99 %.4f\n", n, two.p99);
+  EXPECT_LT(two.p99, 0.7 * sweep.p99);
 }
 
 TEST(RealSamples, SloveneLidarTerrainWithNanNodata) {

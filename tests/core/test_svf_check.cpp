@@ -151,7 +151,7 @@ TEST(SvfCheck, ASampleOfCellsPredictsTheWholeRastersError) {
   const Terrain t = city(121, 111);
   const Grid<float> reference = svf_of(t, "raycast");
   // A cheap sweep (8 near steps, one far line) errs in the city by about 0.01 at p99.
-  const Grid<float> svf = svf_of(t, "sweep1", 8);
+  const Grid<float> svf = svf_of(t, "sweep", 8);
   const ErrorStats whole = compare_to_reference(svf, reference);
   ASSERT_GT(whole.p99, 0.005);
   SvfCheckOptions o;
