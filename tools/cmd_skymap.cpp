@@ -159,7 +159,7 @@ int run(const SkymapOptions& o) {
                  "Warning: the sky's global horizontal exposure, %.1f kWh/m2, exceeds the %.1f kWh/m2 outside the "
                  "atmosphere%s\n",
                  (direct_h + diffuse_h) / 1000, extraterrestrial_h / 1000,
-                 analytic_sun ? " (Preetham's diffuse part at high turbidity; see docs/sky.md)" : "");
+                 analytic_sun ? " (Preetham's diffuse part has no energy balance; see docs/sky.md)" : "");
   }
   meta["DIRECT_HORIZONTAL_WH_M2"] = number_text(direct_h);
   meta["DIFFUSE_HORIZONTAL_WH_M2"] = number_text(diffuse_h);
@@ -208,7 +208,7 @@ Runner setup(CLI::App& app) {
   app.add_option("--step", o->step, "Time step for analytic skies: 1h, 30m, 10min ...")->capture_default_str();
   app.add_option("--tz", o->tz, "IANA zone for --from/--to without an offset");
   app.add_option("--sky", o->sky, "preetham | hosek | perez-epw | isotropic")->capture_default_str();
-  app.add_option("--turbidity", o->turbidity, "Atmospheric turbidity (preetham 1.7-10, hosek 1-10)")
+  app.add_option("--turbidity", o->turbidity, "Atmospheric turbidity (preetham 2-10, hosek 1-10)")
       ->capture_default_str();
   app.add_option("--albedo", o->albedo, "Ground albedo for hosek, 0-1")->capture_default_str();
   app.add_option("--luminous-efficacy", o->efficacy, "lm/W turning Preetham luminance into radiance")

@@ -19,8 +19,13 @@ double brightness(double diffuse_horizontal, double sun_zenith, double extraterr
 // 1.065 < ε < 2.8) so the fitted polynomials stay in range.
 Parameters parameters(double clearness, double brightness, double sun_zenith);
 
-// Relative radiance lv(ζ, γ) = (1 + a·exp(b / cos ζ)) · (1 + c·exp(d·γ) + e·cos²γ); cos ζ is held
-// at its 5°-elevation value below that, where the fit has no data and b > 0 would diverge.
+// Relative radiance lv(ζ, γ) = gradation(ζ) · indicatrix(γ), with gradation 1 + a·exp(b / cos ζ)
+// and indicatrix 1 + c·exp(d·γ) + e·cos²γ; cos ζ is held at its 5°-elevation value below that,
+// where the fit has no data and b > 0 would diverge. Each factor is held at 0 or above: under an
+// overcast sky with a low sun (clearness bin 1, brightness Δ above about 0.7) the fitted gradation
+// turns negative over the lower sky, and radiance cannot.
+double gradation(const Parameters& p, double zeta);
+double indicatrix(const Parameters& p, double gamma);
 double relative_radiance(const Parameters& p, double zeta, double gamma);
 
 }  // namespace skyview::perez

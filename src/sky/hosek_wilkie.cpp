@@ -156,7 +156,9 @@ class HosekWilkieInstant final : public SkyInstant {
     if (!up_ || theta > std::numbers::pi / 2) return 0.0;
     double sum = 0.0;
     for (int b = 0; b < kBands; ++b) sum += band_weight(b) * sky_.band_radiance(b, theta, gamma);
-    return sum;
+    // The published fit dips just below zero at the horizon for hazy skies over dark ground and a low
+    // sun (-0.05 Wh m^-2 sr^-1 at T = 10, albedo 0); radiance cannot.
+    return std::max(sum, 0.0);
   }
 
   // Per band the distribution is g(θ)·(f(γ) + I·√cos θ), so the broadband table is
@@ -191,6 +193,7 @@ class HosekWilkieInstant final : public SkyInstant {
         const float* fb = f.data() + b * ng;
         for (std::size_t j = 0; j < ng; ++j) row[j] += g[b] * fb[j];
       }
+      for (std::size_t j = 0; j < ng; ++j) row[j] = std::max(row[j], 0.0f);  // as radiance()
     }
   }
 

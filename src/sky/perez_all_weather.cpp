@@ -65,10 +65,18 @@ Parameters parameters(double eps, double delta, double z) {
   return p;
 }
 
-double relative_radiance(const Parameters& p, double zeta, double gamma) {
+double gradation(const Parameters& p, double zeta) {
   const double cos_zeta = std::max(std::cos(zeta), kMinCosZeta);
+  return std::max(0.0, 1.0 + p.a * std::exp(p.b / cos_zeta));
+}
+
+double indicatrix(const Parameters& p, double gamma) {
   const double cos_gamma = std::cos(gamma);
-  return (1.0 + p.a * std::exp(p.b / cos_zeta)) * (1.0 + p.c * std::exp(p.d * gamma) + p.e * cos_gamma * cos_gamma);
+  return std::max(0.0, 1.0 + p.c * std::exp(p.d * gamma) + p.e * cos_gamma * cos_gamma);
+}
+
+double relative_radiance(const Parameters& p, double zeta, double gamma) {
+  return gradation(p, zeta) * indicatrix(p, gamma);
 }
 
 }  // namespace skyview::perez

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "skyview/error.h"
+#include "skyview/number_text.h"
 #include "skyview/sky_models.h"
 
 namespace skyview::preetham {
@@ -177,8 +178,10 @@ class PreethamSky final : public SkyModel {
 }  // namespace
 
 std::unique_ptr<SkyModel> make_preetham_sky(double turbidity, double luminous_efficacy_lm_per_w) {
-  if (!(turbidity >= 1.7 && turbidity <= 10.0)) {
-    throw Error("Preetham sky: turbidity must be within 1.7 .. 10 (got " + std::to_string(turbidity) + ")");
+  // Below 2, the bottom of the fit, F(0, Z) heads for zero (at T = 1.643) and the diffuse part blows
+  // up: the clearest sky would be the brightest (docs/sky.md).
+  if (!(turbidity >= 2.0 && turbidity <= 10.0)) {
+    throw Error("Preetham sky: turbidity must be within 2 .. 10 (got " + number_text(turbidity) + ")");
   }
   if (!(luminous_efficacy_lm_per_w > 0.0)) throw Error("Preetham sky: luminous efficacy must be positive");
   return std::make_unique<PreethamSky>(turbidity, luminous_efficacy_lm_per_w);

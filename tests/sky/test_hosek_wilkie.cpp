@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "sky_test_support.h"
 #include "skyview/error.h"
@@ -49,6 +50,28 @@ TEST(HosekWilkie, BroadbandIsTheTrapezoidOfTheBands) {
   // A clear noon-ish sun: DNI over 320-720 nm is a few hundred W/m² (≈40 % of the broadband beam).
   EXPECT_GT(sky->direct_normal(), 250.0);
   EXPECT_LT(sky->direct_normal(), 550.0);
+}
+
+// The published fit dips below zero at the horizon for a hazy sky over dark ground and a low sun;
+// the model holds radiance at zero there, point-wise and tabulated alike.
+TEST(HosekWilkie, HazyLowSunSkyHasNoNegativeRadiance) {
+  const auto model = make_hosek_wilkie_sky(10.0, 0.0);
+  std::vector<double> thetas, gammas;
+  for (int i = 0; i <= 180; ++i) thetas.push_back(i * 0.5 * sky_test::kDeg);
+  for (int j = 0; j <= 180; ++j) gammas.push_back(j * sky_test::kDeg);
+  std::vector<float> table(thetas.size() * gammas.size());
+  std::size_t negative = 0;
+  for (const double elevation : {1.0, 2.0, 4.0, 8.0}) {
+    SkyConditions c;
+    c.sun_zenith = (90.0 - elevation) * sky_test::kDeg;
+    const auto sky = model->at(c);
+    sky->tabulate(thetas, gammas, table.data());
+    for (const float v : table) negative += v < 0.0f;
+    for (const double th : thetas) {
+      for (const double ga : gammas) negative += sky->radiance(th, ga) < 0.0;
+    }
+  }
+  EXPECT_EQ(negative, 0u);
 }
 
 TEST(HosekWilkie, RejectsOutOfRangeParameters) {

@@ -50,6 +50,31 @@ TEST(Preetham, SkyEqualsZenithValueAtTheZenith) {
             preetham::sky(2.5, 35 * kDeg, 35 * kDeg, 70 * kDeg).Y);
 }
 
+// The distribution F(θ,γ)/F(0,Z) of Y, x and y away from the zenith, from the paper's table
+// (App. A.2, the shared CSV's "paper" rows) written out here.
+TEST(Preetham, DistributionFollowsThePaperTable) {
+  SKYVIEW_REQUIRE_SHARED(path, "sky_coefficients/preetham1999_distribution.csv");
+  const double T = 3.0, Z = 40 * kDeg, theta = 60 * kDeg, gamma = 50 * kDeg;
+  double k[3][5] = {};  // Y, x, y by A..E
+  int found = 0;
+  for (const auto& r : sky_test::read_csv(path)) {
+    if (r.at("variant") != "paper") continue;
+    const int c = r.at("component") == "Y" ? 0 : r.at("component") == "x" ? 1 : 2;
+    k[c][r.at("param")[0] - 'A'] = std::stod(r.at("slope_per_T")) * T + std::stod(r.at("intercept"));
+    ++found;
+  }
+  ASSERT_EQ(found, 15);
+  auto F = [](const double* p, double th, double ga) {
+    return (1 + p[0] * std::exp(p[1] / std::cos(th))) *
+           (1 + p[2] * std::exp(p[3] * ga) + p[4] * std::pow(std::cos(ga), 2));
+  };
+  const preetham::Yxy z = preetham::zenith(T, Z);
+  const preetham::Yxy s = preetham::sky(T, Z, theta, gamma);
+  EXPECT_NEAR(s.Y / z.Y, F(k[0], theta, gamma) / F(k[0], 0.0, Z), 1e-9);
+  EXPECT_NEAR(s.x / z.x, F(k[1], theta, gamma) / F(k[1], 0.0, Z), 1e-9);
+  EXPECT_NEAR(s.y / z.y, F(k[2], theta, gamma) / F(k[2], 0.0, Z), 1e-9);
+}
+
 TEST(Preetham, ColourConversionKeepsD65White) {
   const preetham::LinearRgb w = preetham::to_linear_srgb(preetham::to_xyz({1.0, 0.31271, 0.32902}));
   EXPECT_NEAR(w.r, 1.0, 2e-3);
@@ -68,6 +93,22 @@ TEST(Preetham, BroadbandSkyAndSunArePlausible) {
   EXPECT_GT(sky->direct_normal(), 700.0);
   EXPECT_LT(sky->direct_normal(), 1200.0);
   EXPECT_THROW(make_preetham_sky(12.0), Error);
+}
+
+// Below T = 2, the bottom of the fit, the zenith's normalisation F(0, Z) heads for zero (its factor
+// 1 + A e^B vanishes at T = 1.643), and the "clearest" sky had the most diffuse light: 374 W/m² at
+// T = 1.7 against 195 at T = 2 (sun 30° from the zenith), and a global horizontal above the
+// extraterrestrial one. The range now starts at 2, and from there diffuse light grows with haze.
+TEST(Preetham, TurbidityStartsAtTheFitsBottomAndDiffuseGrowsWithHaze) {
+  EXPECT_THROW(make_preetham_sky(1.9), Error);
+  SkyConditions c;
+  c.sun_zenith = 30 * kDeg;
+  double previous = 0.0;
+  for (const double T : {2.0, 2.5, 3.0, 4.0, 6.0}) {
+    const double dhi = make_preetham_sky(T)->at(c)->diffuse_horizontal();
+    EXPECT_GT(dhi, previous) << "T = " << T;
+    previous = dhi;
+  }
 }
 
 }  // namespace
