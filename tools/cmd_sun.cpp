@@ -26,6 +26,7 @@ struct Options {
   std::string lat, lon, elevation = "0", pressure = "1013.25", temperature = "15", delta_t, delta_ut1 = "0";
   std::string time, from, to, step = "1h", tz, facade_azimuth, slope, surface_azimuth, convention = "local";
   bool csv = false, events = false;
+  const CLI::App* app = nullptr;
 };
 
 // Numbers are read here rather than by CLI11 so that every bad value is one line naming the option.
@@ -74,10 +75,12 @@ Period read_period(const Options& o) {
   if (single == (!o.from.empty() || !o.to.empty())) throw Error("give either --time T or --from T1 --to T2");
   if (!single && (o.from.empty() || o.to.empty())) throw Error("--from and --to go together");
   const ParsedTime a = parse_time_option(single ? o.time : o.from, o.tz, false);
-  const ParsedTime b = single ? a : parse_time_option(o.to, o.tz, false);
-  Period p{a.unix_utc, b.unix_utc, parse_duration_s(o.step), {}};
+  const ParsedTime b = single || o.to == o.from ? a : parse_time_option(o.to, o.tz, false);
+  // Events come a day at a time: --step is refused with them (and with --time), not read.
+  const bool stepped = !single && !o.events;
+  Period p{a.unix_utc, b.unix_utc, stepped ? parse_duration_s(o.step) : 86400.0, {}};
   if (p.last < p.first) throw Error("--to is before --from");
-  if ((p.last - p.first) / p.step > kMaxRows) throw Error("--step " + o.step + " gives more than 1e7 rows");
+  if (stepped && (p.last - p.first) / p.step > kMaxRows) throw Error("--step " + o.step + " gives more than 1e7 rows");
   p.clock.zone = o.tz.empty() ? a.zone : o.tz;
   p.clock.fixed_offset_s = a.utc_offset_s;
   return p;
@@ -91,7 +94,11 @@ Site read_site(const Options& o) {
   s.elevation_m = number("--elevation", o.elevation);
   s.pressure_mbar = number("--pressure", o.pressure);
   s.temperature_c = number("--temperature", o.temperature);
-  if (auto dt = optional_number("--delta-t", o.delta_t)) s.delta_t_s = *dt;
+  if (auto dt = optional_number("--delta-t", o.delta_t)) {
+    // Below -1e8 the library reads "automatic": a value the user gives is checked, not reinterpreted.
+    if (!(std::abs(*dt) <= 1e6)) throw Error("--delta-t " + o.delta_t + " s is outside -1e6..1e6 s");
+    s.delta_t_s = *dt;
+  }
   s.delta_ut1_s = number("--delta-ut1", o.delta_ut1);
   validate_site(s);
   return s;
@@ -163,6 +170,10 @@ const char* kind_name(DayKind k) {
       return "polar_day";
     case DayKind::polar_night:
       return "polar_night";
+    case DayKind::no_sunset:
+      return "no_sunset";
+    case DayKind::no_sunrise:
+      return "no_sunrise";
     default:
       return "normal";
   }
@@ -176,6 +187,9 @@ int print_events(const Options& o, const Site& site, const Period& p) {
   };
   const std::int64_t first = local_day(p.first), last = local_day(p.last);
   if (last - first > 400000) throw Error("--events covers more than 400000 days");
+  // The first and last days first: their events reach half a day beyond them, and a date outside
+  // the SPA's years must fail before a line is printed.
+  for (const std::int64_t day : {first, last}) sun_events(civil_from_days(day), p.clock.offset_at(p.first), site);
   if (o.csv) {
     std::printf(
         "date,sunrise_utc,transit_utc,sunset_utc,sunrise_local,transit_local,sunset_local,day_length_h,"
@@ -192,8 +206,12 @@ int print_events(const Options& o, const Site& site, const Period& p) {
     // The clock offset at local noon decides the day's offset (DST changes happen at night).
     const double noon_guess = static_cast<double>(day) * 86400.0 + 43200.0;
     const double offset = p.clock.offset_at(noon_guess - p.clock.offset_at(noon_guess));
+    // A date the zone skipped (Samoa went from 29 to 31 December 2011) has no events of its own:
+    // its noon would be the next day's.
+    if (local_day(static_cast<double>(day) * 86400.0 + 43200.0 - offset) != day) continue;
     const SunEvents e = sun_events(date, offset, site, convention);
-    const std::string date_text = format_iso_utc(static_cast<double>(day) * 86400.0).substr(0, 10);
+    std::string date_text = format_iso_utc(static_cast<double>(day) * 86400.0);
+    date_text.resize(date_text.find('T'));
     auto utc = [](const std::optional<double>& t) { return t ? format_iso_utc(*t) : std::string(); };
     auto local = [&](const std::optional<double>& t) { return t ? p.clock.format(*t) : std::string(); };
     if (o.csv) {
@@ -256,9 +274,21 @@ Runner setup(CLI::App& app) {
   app.add_option("--surface-azimuth", o->surface_azimuth,
                  "Azimuth the tilted surface faces, degrees clockwise from north (default 180)")
       ->type_name("DEG");
+  o->app = &app;
   return [o] {
+    const CLI::App& a = *o->app;
+    const std::string positions = "sun positions (not --events)";
+    for (const char* option : {"--facade-azimuth", "--slope", "--surface-azimuth"})
+      refuse_unused(a, option, !o->events, positions);
+    refuse_unused(a, "--step", !o->events && o->time.empty(), "a period of positions (--from and --to, no --events)");
+    refuse_unused(a, "--convention", o->events, "--events");
     const Site site = read_site(*o);
     const Period period = read_period(*o);
+    // Every instant the run will compute is in the SPA's range before a line is printed: the range
+    // is one span, so its ends decide (a half-written CSV with exit 1 is worse than none).
+    if (!o->events) {
+      for (const double t : {period.first, period.last}) solar_position(t, site);
+    }
     return o->events ? print_events(*o, site, period) : print_positions(*o, site, period);
   };
 }

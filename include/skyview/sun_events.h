@@ -22,20 +22,30 @@ enum class SunEventDay {
   spa_utc_day,
 };
 
-enum class DayKind { normal, polar_day, polar_night };
+// normal: a sunrise and a sunset. The days that begin and end polar day and night have one of
+// them only: the sun rises and stays up past the next lower culmination (no_sunset), or has been
+// up since the last one and sets (no_sunrise).
+enum class DayKind { normal, polar_day, polar_night, no_sunset, no_sunrise };
 
 struct SunEvents {
   DayKind kind = DayKind::normal;
-  double transit_utc = 0.0;           // Unix time of the sun's meridian transit
-  std::optional<double> sunrise_utc;  // absent in polar day and night
-  std::optional<double> sunset_utc;
+  double transit_utc = 0.0;            // Unix time of the sun's meridian transit
+  std::optional<double> sunrise_utc;   // absent in polar day and night, and on a no_sunrise day
+  std::optional<double> sunset_utc;    // absent in polar day and night, and on a no_sunset day
   double transit_elevation_deg = 0.0;  // topocentric, refracted, at transit
-  // Hours between sunrise and sunset; 24 in polar day and 0 in polar night.
+  // Half a day either side of the transit: the lower culminations, to within seconds.
+  double lower_before_utc = 0.0, lower_after_utc = 0.0;
+  // Hours the sun spends above the rise-and-set altitude between the lower culminations around the
+  // transit: sunset minus sunrise on a normal day, 24 in polar day and 0 in polar night.
   double day_length_h() const;
 };
 
 // Events for calendar day `date` in a place whose clocks are `utc_offset_s` ahead of UTC that
 // day (only local_day uses the offset). Polar day and night are answers (`kind`), not errors.
+// local_day judges the day by the sun's geometric altitude at its transit and lower culminations
+// and checks SPA's rise and set against it (found by bisection where SPA's are off: on the days
+// around polar day and night its estimate from one declination can be hours wrong); spa_utc_day
+// is the report's algorithm as published, those days included.
 SunEvents sun_events(const CivilDate& date, double utc_offset_s, const Site& site,
                      SunEventDay convention = SunEventDay::local_day,
                      double sunrise_altitude_deg = kSunriseAltitudeDeg);

@@ -108,12 +108,19 @@ std::string format_wall(double wall_seconds, int decimals) {
 std::string format_iso_utc(double unix_time_utc, int decimals) { return format_wall(unix_time_utc, decimals) + "Z"; }
 
 std::string format_iso_local(double unix_time_utc, double utc_offset_s, int decimals) {
-  // Offsets are below a day; the modulo only keeps the compiler's length analysis bounded.
-  const long offset_min = std::lround(utc_offset_s / 60.0);
-  const int magnitude = static_cast<int>((offset_min < 0 ? -offset_min : offset_min) % 1440);
+  // Offsets are below a day; the modulo only keeps the compiler's length analysis bounded. Local
+  // mean time (Amsterdam until 1937: +00:19:32) keeps its seconds, so that the wall time and the
+  // offset still give the instant back; rounding them to minutes put the time 28 s off.
+  const long offset_s = std::lround(utc_offset_s);
+  const long magnitude = (offset_s < 0 ? -offset_s : offset_s) % 86400;
   char zone[16];
-  std::snprintf(zone, sizeof zone, "%c%02d:%02d", offset_min < 0 ? '-' : '+', magnitude / 60, magnitude % 60);
-  return format_wall(unix_time_utc + utc_offset_s, decimals) + zone;
+  if (magnitude % 60 == 0) {
+    std::snprintf(zone, sizeof zone, "%c%02ld:%02ld", offset_s < 0 ? '-' : '+', magnitude / 3600, magnitude / 60 % 60);
+  } else {
+    std::snprintf(zone, sizeof zone, "%c%02ld:%02ld:%02ld", offset_s < 0 ? '-' : '+', magnitude / 3600,
+                  magnitude / 60 % 60, magnitude % 60);
+  }
+  return format_wall(unix_time_utc + static_cast<double>(offset_s), decimals) + zone;
 }
 
 }  // namespace skyview

@@ -32,11 +32,65 @@ struct ThreeDays {
 // Eq. A.6-A.8: quadratic interpolation at `n` days after 0 TT of the middle day.
 double interpolate(double value, double a, double b, double n) { return value + n * (a + b + (b - a) * n) / 2.0; }
 
+// SPA's rise and set come from one hour angle H0 at the day's declination, then one correction
+// that divides by sin H: near polar day and night, where H0 is close to 0 or 180 deg, the day's
+// kind can come out wrong and the times hours off (Tromso, 27 November 2024: sunrise 11:48, transit
+// 11:32, sunset 11:13, called normal, with the sun 0.9 deg under its rise altitude at transit).
+// So the day is judged by the sun's geometric altitude (no refraction: h0 already holds the
+// standard one) at its transit and at the lower culminations either side, and each event SPA gives
+// is kept only where it lies on the right side of the transit and the sun is at h0 there; else
+// the crossing is bisected from the altitudes themselves. Normal days keep SPA's times.
+double geometric_altitude(double t, const Site& site) {
+  Site bare = site;
+  bare.pressure_mbar = 0.0;
+  return solar_position(t, bare).elevation_deg;
+}
+
+// The time in [lo, hi] where the altitude crosses h0, rising (altitude below h0 at lo) or setting.
+double bisect_crossing(double lo, double hi, const Site& site, double h0, bool rising) {
+  for (int i = 0; i < 40 && hi - lo > 0.01; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    const bool above = geometric_altitude(mid, site) >= h0;
+    (above == rising ? hi : lo) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+void check_against_altitudes(SunEvents& e, const Site& site, double h0) {
+  const double transit = e.transit_utc;
+  const bool up_at_transit = geometric_altitude(transit, site) >= h0;
+  const bool rises = up_at_transit && geometric_altitude(e.lower_before_utc, site) < h0;
+  const bool sets = up_at_transit && geometric_altitude(e.lower_after_utc, site) < h0;
+  // SPA's event is kept where it lies between the culminations and the sun is within 0.05 deg of
+  // h0 there (a few seconds of time at mid-latitudes), so that normal days keep the report's times.
+  auto checked = [&](const std::optional<double>& spa, double lo, double hi, bool rising) {
+    if (spa && *spa > lo && *spa < hi && std::abs(geometric_altitude(*spa, site) - h0) < 0.05) return *spa;
+    return bisect_crossing(lo, hi, site, h0, rising);
+  };
+  std::optional<double> sunrise, sunset;
+  if (rises) sunrise = checked(e.sunrise_utc, e.lower_before_utc, transit, true);
+  if (sets) sunset = checked(e.sunset_utc, transit, e.lower_after_utc, false);
+  e.sunrise_utc = sunrise;
+  e.sunset_utc = sunset;
+  if (!up_at_transit)
+    e.kind = DayKind::polar_night;
+  else if (rises && sets)
+    e.kind = DayKind::normal;
+  else if (rises)
+    e.kind = DayKind::no_sunset;
+  else if (sets)
+    e.kind = DayKind::no_sunrise;
+  else
+    e.kind = DayKind::polar_day;
+}
+
 }  // namespace
 
 double SunEvents::day_length_h() const {
   if (kind == DayKind::polar_day) return 24.0;
   if (kind == DayKind::polar_night) return 0.0;
+  if (kind == DayKind::no_sunset) return (lower_after_utc - *sunrise_utc) / 3600.0;
+  if (kind == DayKind::no_sunrise) return (*sunset_utc - lower_before_utc) / 3600.0;
   // In the SPA convention the sunset can precede the sunrise within the UT day.
   const double hours = (*sunset_utc - *sunrise_utc) / 3600.0;
   return hours < 0.0 ? hours + 24.0 : hours;
@@ -111,6 +165,11 @@ SunEvents sun_events(const CivilDate& date, double utc_offset_s, const Site& sit
     }
   }
   events.transit_elevation_deg = solar_position(events.transit_utc, site).elevation_deg;
+  // Half a day either side of the transit is within seconds of the lower culminations (and, at the
+  // poles, where the sun's altitude barely changes in a day, as good a bound as any).
+  events.lower_before_utc = events.transit_utc - 43200.0;
+  events.lower_after_utc = events.transit_utc + 43200.0;
+  if (convention == SunEventDay::local_day) check_against_altitudes(events, site, sunrise_altitude_deg);
   return events;
 }
 

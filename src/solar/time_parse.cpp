@@ -138,7 +138,8 @@ ParsedTime parse_time(const std::string& text, const std::string& default_zone) 
     const long hours = in.digits(2, "a two-digit offset hour");
     long minutes = 0;
     if (in.accept(':') || !in.done()) minutes = in.digits(2, "two-digit offset minutes");
-    if (hours > 18 || minutes > 59) throw Error("UTC offset in '" + text + "' is outside -18:00..+18:00");
+    if (hours > 18 || minutes > 59 || (hours == 18 && minutes > 0))
+      throw Error("UTC offset in '" + text + "' is outside -18:00..+18:00");
     offset = offset_sign * (hours * 3600.0 + minutes * 60.0);
   }
   if (!in.done()) in.fail("the end of the time or a UTC offset");

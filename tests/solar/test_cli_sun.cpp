@@ -94,10 +94,42 @@ TEST(SunCli, BadInputIsOneLine) {
         "--lat 45 --lon 0 --time '2024-01-01T00:00 Mars/Olympus'", "--lat x --lon 0 --time 2024-01-01Z",
         "--lat 45 --lon 0", "--lat 45 --lon 0 --from 2024-01-02Z --to 2024-01-01Z",
         "--lat 45 --lon 0 --time 2024-01-01Z --step 0h --from 2024-01-01Z",
-        "--lat 45 --lon 0 --from 2024-01-01Z --to 2024-01-02Z --step 1y"}) {
+        "--lat 45 --lon 0 --from 2024-01-01Z --to 2024-01-02Z --step 1y",
+        // Options the run would not use (they were ignored until Dec 3).
+        "--lat 45 --lon 0 --time 2024-01-01T12:00Z --events --facade-azimuth 180",
+        "--lat 45 --lon 0 --time 2024-01-01T12:00Z --events --slope 30",
+        "--lat 45 --lon 0 --from 2024-01-01Z --to 2024-12-31Z --events --step 1s",
+        "--lat 45 --lon 0 --time 2024-01-01T12:00Z --step 1h",
+        "--lat 45 --lon 0 --time 2024-01-01T12:00Z --convention spa",
+        // Below -1e8 the library's sentinel for "automatic": it was taken as that.
+        "--lat 45 --lon 0 --time 2024-01-01T12:00Z --delta-t -5e8", "--lat 45 --lon 0 --time 2024-01-01T12:00+18:59"}) {
     const SunRun r = run_sun(args);
     EXPECT_EQ(r.exit_code, 1) << args;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
     EXPECT_NE(r.err.find("skyview sun: error: "), std::string::npos) << r.err;
   }
+  // A period that ends outside the SPA's years fails before any row is printed.
+  const SunRun late = run_sun("--lat 40 --lon 0 --from 5999-12-31T20:00Z --to 6000-12-31T23:00-05:00 --step 1h --csv");
+  EXPECT_EQ(late.exit_code, 1);
+  EXPECT_EQ(late.out, "");
+}
+
+// The date column of events before year 0, a date a zone skipped, and local mean time's seconds.
+TEST(SunCli, EventDatesAndOffsetsSayWhatTheyMean) {
+  SunRun r = run_sun("--lat 40 --lon 0 --from -1999-01-01T00:00Z --to -1999-01-02T00:00Z --events --csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\n-1999-01-01,"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\n-1999-01-02,"), std::string::npos) << r.out;
+  // Samoa went from 29 to 31 December 2011: no row may be dated 30 December, and 31 December once.
+  r = run_sun(
+      "--lat -13.83 --lon -171.76 --tz Pacific/Apia --from 2011-12-29T00:00 --to 2011-12-31T00:00 --events --csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.find("\n2011-12-30,"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\n2011-12-29,"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\n2011-12-31,"), std::string::npos) << r.out;
+  // Amsterdam kept local mean time (+00:19:32, +01:19:32 in summer) until 1937.
+  r = run_sun("--lat 52.37 --lon 4.89 --time '1930-06-21T12:00:00 Europe/Amsterdam' --csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("1930-06-21T10:40:28Z"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("1930-06-21T12:00:00+01:19:32"), std::string::npos) << r.out;
 }

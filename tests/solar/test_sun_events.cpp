@@ -147,6 +147,51 @@ TEST(SunEventsPolar, SouthernHemisphereIsReversed) {
   EXPECT_EQ(sun_events({2024, 6, 21}, 0.0, pole).kind, DayKind::polar_day);
 }
 
+// The days that begin and end polar night and day. SPA's estimate from one hour angle called
+// Tromso's 27 November 2024 normal with a sunrise after its sunset (the sun 0.9 deg under the
+// rise altitude at transit), its 15 January polar night with the sun above it for a quarter of an
+// hour, and gave a day length of -5.6 h at 74.5 S on 5 May. Checked here against the sun's
+// altitude itself: every sunrise and sunset is at the rise altitude, before and after the transit.
+TEST(SunEventsPolar, BoundaryDaysAgreeWithTheSunsAltitude) {
+  Site site;
+  site.pressure_mbar = 0.0;  // geometric altitude: the rise altitude already holds the refraction
+  auto check = [&](const SunEvents& e, const char* what) {
+    if (e.sunrise_utc) {
+      EXPECT_LT(*e.sunrise_utc, e.transit_utc) << what;
+      EXPECT_NEAR(solar_position(*e.sunrise_utc, site).elevation_deg, kSunriseAltitudeDeg, 0.05) << what;
+    }
+    if (e.sunset_utc) {
+      EXPECT_GT(*e.sunset_utc, e.transit_utc) << what;
+      EXPECT_NEAR(solar_position(*e.sunset_utc, site).elevation_deg, kSunriseAltitudeDeg, 0.05) << what;
+    }
+    EXPECT_GE(e.day_length_h(), 0.0) << what;
+    EXPECT_LE(e.day_length_h(), 24.0) << what;
+  };
+  site.latitude_deg = 69.6492, site.longitude_deg = 18.9553;  // Tromso
+  const SunEvents nov27 = sun_events({2024, 11, 27}, 3600.0, site);
+  EXPECT_EQ(nov27.kind, DayKind::polar_night);
+  EXPECT_FALSE(nov27.sunrise_utc || nov27.sunset_utc);
+  const SunEvents jan15 = sun_events({2024, 1, 15}, 0.0, site);
+  EXPECT_EQ(jan15.kind, DayKind::normal);
+  EXPECT_NEAR(jan15.day_length_h(), 0.25, 0.02);  // sampled: above the rise altitude 10:47-11:02Z
+  check(jan15, "Tromso, 15 January");
+  const SunEvents may17 = sun_events({2024, 5, 17}, 0.0, site);  // up from the night of 16 May on
+  EXPECT_EQ(may17.kind, DayKind::no_sunset);
+  check(may17, "Tromso, 17 May");
+  site.latitude_deg = -74.5, site.longitude_deg = 0.0;
+  EXPECT_EQ(sun_events({2024, 5, 5}, 0.0, site).kind, DayKind::polar_night);
+  // Every day of a year at five high latitudes, both hemispheres.
+  for (const double lat : {-80.0, -69.0, 67.5, 72.0, 89.5}) {
+    site.latitude_deg = lat;
+    for (int day = 0; day < 366; day += 1) {
+      const CivilDate date = civil_from_days(days_from_civil({2024, 1, 1}) + day);
+      const SunEvents e = sun_events(date, 0.0, site);
+      check(e, ("latitude " + std::to_string(lat) + ", day " + std::to_string(day)).c_str());
+      if (::testing::Test::HasFailure()) return;
+    }
+  }
+}
+
 // Around the March equinox the right ascension passes 360 -> 0; the report's "limit to 0..1"
 // would make the sunrise jump there. Consecutive sunrises must change smoothly.
 TEST(SunEventsContinuity, SunriseSmoothAcrossRightAscensionWrap) {
