@@ -46,8 +46,9 @@ Terrain rasterize(const HeightFunction& f, int width, int height, const GeoRefer
     double cx = georef.x_of((width - 1) / 2.0, (height - 1) / 2.0),
            cy = georef.y_of((width - 1) / 2.0, (height - 1) / 2.0);
     ct->Transform(1, &cx, &cy);
+    const double invf = srs.GetInvFlattening();  // 0 for a sphere
     const GeographicLib::LocalCartesian local(
-        cy, cx, 0.0, GeographicLib::Geocentric(srs.GetSemiMajor(), 1.0 / srs.GetInvFlattening()));
+        cy, cx, 0.0, GeographicLib::Geocentric(srs.GetSemiMajor(), invf == 0.0 ? 0.0 : 1.0 / invf));
     for (std::size_t i = 0; i < xs.size(); ++i) {
       double e, n, u;
       local.Forward(ys[i], xs[i], 0.0, e, n, u);

@@ -2,12 +2,20 @@
 
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
+#include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
+#include <fstream>
+#include <limits>
 #include <random>
+#include <system_error>
 
 #include "skyview/error.h"
+#include "skyview/number_text.h"
 #include "skyview/raster_io.h"
 
 namespace skyview {
@@ -25,6 +33,48 @@ bool inside(const std::vector<std::array<double, 2>>& ring, double x, double y) 
 
 std::vector<std::array<double, 2>> box(double x0, double y0, double x1, double y1) {
   return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+}
+
+std::string lowercase(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+// GDAL's last message, or a fallback where it said nothing.
+std::string gdal_reason() {
+  const char* m = CPLGetLastErrorMsg();
+  return m && *m ? std::string(m) : std::string("unknown GDAL error");
+}
+
+// Writes the footprints layer into `ds`; throws on the first failure.
+void fill_footprints(GDALDataset* ds, const SyntheticDistrict& d, OGRSpatialReference& srs) {
+  OGRLayer* layer = ds->CreateLayer("footprints", &srs, wkbPolygon, nullptr);
+  if (!layer) throw Error("cannot create a layer: " + gdal_reason());
+  OGRFieldDefn name("name", OFTString), base("base", OFTReal), height("height", OFTReal);
+  for (OGRFieldDefn* field : {&name, &base, &height}) {
+    if (layer->CreateField(field) != OGRERR_NONE) throw Error("cannot create a field: " + gdal_reason());
+  }
+  for (std::size_t i = 0; i < d.buildings.size(); ++i) {
+    const DistrictBuilding& b = d.buildings[i];
+    OGRFeature feature(layer->GetLayerDefn());
+    feature.SetField("name", ("block " + std::to_string(i + 1)).c_str());
+    feature.SetField("base", b.base);
+    if (b.height_known) {
+      feature.SetField("height", b.height);
+    } else {
+      feature.SetFieldNull(feature.GetFieldIndex("height"));
+    }
+    OGRPolygon polygon;
+    for (const auto* ring : {&b.outer, &b.courtyard}) {
+      if (ring->empty()) continue;
+      OGRLinearRing r;
+      for (const auto& p : *ring) r.addPoint(p[0], p[1]);
+      r.closeRings();
+      polygon.addRing(&r);
+    }
+    feature.SetGeometry(&polygon);
+    if (layer->CreateFeature(&feature) != OGRERR_NONE) throw Error("cannot write a footprint: " + gdal_reason());
+  }
 }
 
 }  // namespace
@@ -84,12 +134,22 @@ SyntheticDistrict synthetic_district(double x0, double y0, double size, std::uin
 
 std::vector<LasPoint> district_lidar(const SyntheticDistrict& d, double density, int birds, std::uint64_t seed) {
   if (!(density > 0)) throw Error("the survey density must be positive");
+  if (birds < 0) throw Error("the number of birds must not be negative");
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   const double spacing = 1.0 / std::sqrt(density);
-  const int n = static_cast<int>(d.size / spacing);
+  // Counted in doubles: a dense survey's count overflows an int. A LAS 1.2 header counts points
+  // in 32 bits.
+  const double per_side = std::floor(d.size / spacing), total = per_side * per_side + birds;
+  constexpr double kMaxPoints = std::numeric_limits<std::uint32_t>::max();
+  if (!(total <= kMaxPoints)) {
+    throw Error("too many points: " + number_text(density) + " returns per square metre over " + number_text(d.size) +
+                " x " + number_text(d.size) + " m make " + number_text(total) + "; a LAS 1.2 file holds at most " +
+                number_text(kMaxPoints));
+  }
+  const int n = static_cast<int>(per_side);
   std::vector<LasPoint> pts;
-  pts.reserve(static_cast<std::size_t>(n) * n + birds);
+  pts.reserve(static_cast<std::size_t>(total));
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) {
       const double x = d.x0 + (i + u(rng)) * spacing, y = d.y0 + (j + u(rng)) * spacing;
@@ -108,44 +168,79 @@ std::vector<LasPoint> district_lidar(const SyntheticDistrict& d, double density,
 void write_district_footprints(const std::string& path, const SyntheticDistrict& d, const std::string& crs_wkt,
                                bool overwrite) {
   init_gdal();
-  if (std::filesystem::exists(path)) {
-    if (!overwrite) throw Error("'" + path + "' exists; give --overwrite to replace it");
-    std::filesystem::remove(path);
-  }
-  const std::string ext = std::filesystem::path(path).extension().string();
+  check_output_writable(path, overwrite);
+  const std::filesystem::path target(path);
+  const std::string ext = lowercase(target.extension().string());
   const char* driver_name = ext == ".gpkg" ? "GPKG" : (ext == ".shp" ? "ESRI Shapefile" : "GeoJSON");
   GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(driver_name);
   if (!driver) throw Error(std::string("GDAL has no ") + driver_name + " driver");
-  GDALDatasetUniquePtr ds(driver->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
-  if (!ds) throw Error("cannot create '" + path + "'");
   OGRSpatialReference srs;
   if (srs.importFromWkt(crs_wkt.c_str()) != OGRERR_NONE) throw Error("the footprints' CRS is not valid WKT");
-  OGRLayer* layer = ds->CreateLayer("footprints", &srs, wkbPolygon, nullptr);
-  if (!layer) throw Error("cannot create a layer in '" + path + "'");
-  OGRFieldDefn name("name", OFTString), base("base", OFTReal), height("height", OFTReal);
-  layer->CreateField(&name);
-  layer->CreateField(&base);
-  layer->CreateField(&height);
-  for (std::size_t i = 0; i < d.buildings.size(); ++i) {
-    const DistrictBuilding& b = d.buildings[i];
-    OGRFeature feature(layer->GetLayerDefn());
-    feature.SetField("name", ("block " + std::to_string(i + 1)).c_str());
-    feature.SetField("base", b.base);
-    if (b.height_known) {
-      feature.SetField("height", b.height);
-    } else {
-      feature.SetFieldNull(feature.GetFieldIndex("height"));
+  const std::string id = target.stem().string() + ".skyview-tmp-" + std::to_string(::getpid());
+
+  // Built in memory first: GDAL's GeoJSON and shapefile writers do not report failed writes (a
+  // full disk left a truncated file and no error), ours do.
+  const std::string memory = "/vsimem/" + id + "/";
+  struct MemoryCleanup {
+    std::string dir;
+    ~MemoryCleanup() { VSIRmdirRecursive(dir.c_str()); }
+  } memory_cleanup{memory};
+  std::vector<std::pair<std::string, std::string>> files;  // name, bytes
+  {
+    CPLErrorReset();
+    GDALDataset* ds = driver->Create((memory + target.filename().string()).c_str(), 0, 0, 0, GDT_Unknown, nullptr);
+    if (!ds) throw Error("cannot write '" + path + "': " + gdal_reason());
+    try {
+      fill_footprints(ds, d, srs);
+    } catch (const Error& e) {
+      GDALClose(ds);
+      throw Error("cannot write '" + path + "': " + e.what());
     }
-    OGRPolygon polygon;
-    for (const auto* ring : {&b.outer, &b.courtyard}) {
-      if (ring->empty()) continue;
-      OGRLinearRing r;
-      for (const auto& p : *ring) r.addPoint(p[0], p[1]);
-      r.closeRings();
-      polygon.addRing(&r);
+    GDALClose(ds);
+    if (CPLGetLastErrorType() >= CE_Failure) throw Error("cannot write '" + path + "': " + gdal_reason());
+    char** names = VSIReadDir(memory.c_str());
+    for (char** n = names; n && *n; ++n) {
+      vsi_l_offset size = 0;
+      const GByte* bytes = VSIGetMemFileBuffer((memory + *n).c_str(), &size, FALSE);
+      if (bytes) files.emplace_back(*n, std::string(reinterpret_cast<const char*>(bytes), size));
     }
-    feature.SetGeometry(&polygon);
-    if (layer->CreateFeature(&feature) != OGRERR_NONE) throw Error("cannot write a footprint to '" + path + "'");
+    CSLDestroy(names);
+  }
+  if (files.empty()) throw Error("cannot write '" + path + "': GDAL wrote no file");
+
+  // Then into a hidden folder beside `path` and moved into place: a failed write leaves an old
+  // output as it was, and a shapefile's side files move together.
+  std::string hidden = ".";  // appended, not "." + ...: GCC 12 warns falsely (-Wrestrict) on that
+  hidden += id;
+  const std::filesystem::path folder = target.parent_path() / hidden;
+  std::error_code ec;
+  std::filesystem::remove_all(folder, ec);
+  if (!std::filesystem::create_directory(folder, ec)) {
+    throw Error("cannot write '" + path + "': cannot make the temporary folder '" + folder.string() + "'");
+  }
+  struct FolderCleanup {
+    std::filesystem::path dir;
+    ~FolderCleanup() {
+      std::error_code ignored;
+      std::filesystem::remove_all(dir, ignored);
+    }
+  } folder_cleanup{folder};
+  for (const auto& [name, bytes] : files) {
+    std::ofstream out(folder / name, std::ios::binary | std::ios::trunc);
+    out << bytes;
+    out.close();
+    if (!out) throw Error("cannot write '" + path + "'");
+  }
+  if (files.size() > 1 && std::filesystem::exists(target)) {
+    // An old shapefile goes with all its side files, so no stale index or code page survives.
+    if (driver->Delete(path.c_str()) != CE_None) std::filesystem::remove(target, ec);
+  }
+  for (const auto& file : files) {
+    // The shapefile driver writes "S.SHP" as "S.shp": the output keeps the name asked for.
+    const std::string name =
+        lowercase(file.first) == lowercase(target.filename().string()) ? target.filename().string() : file.first;
+    std::filesystem::rename(folder / file.first, target.parent_path() / name, ec);
+    if (ec) throw Error("cannot move the finished output into place at '" + path + "': " + ec.message());
   }
 }
 

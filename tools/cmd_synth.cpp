@@ -28,7 +28,7 @@ Runner setup(CLI::App& app) {
                  "city, mountains, canyon, pit, plane (rasters); lidar (LAS) or footprints (vector) of a district")
       ->required()
       ->check(CLI::IsMember({"city", "mountains", "canyon", "pit", "plane", "lidar", "footprints"}));
-  app.add_option("output", o->output, "Output raster")->required();
+  app.add_option("output", o->output, "Output raster, LAS or vector file")->required();
   app.add_option("--size", o->size, "Cells per side")->capture_default_str()->check(CLI::Range(3, 20000));
   app.add_option("--cell", o->cell, "Cell size in metres")->capture_default_str()->check(positive_number());
   app.add_option("--crs", o->crs, "CRS of the grid (projected, metres)")->capture_default_str();
@@ -38,7 +38,9 @@ Runner setup(CLI::App& app) {
   app.add_option("--density", o->density, "lidar: returns per square metre")
       ->capture_default_str()
       ->check(positive_number());
-  app.add_option("--birds", o->birds, "lidar: isolated noise returns high above the district")->capture_default_str();
+  app.add_option("--birds", o->birds, "lidar: isolated noise returns high above the district")
+      ->capture_default_str()
+      ->check(non_negative_number());
   add_output_options(app, o->out);
   app.footer(
       "lidar and footprints describe the same district of size x cell metres around the origin: 3 x 3 blocks, "
@@ -51,6 +53,9 @@ Runner setup(CLI::App& app) {
       refuse_unused(app, name, raster, "the raster kinds (city, mountains, canyon, pit, plane)");
     refuse_unused(app, "--density", o->kind == "lidar", "lidar");
     refuse_unused(app, "--birds", o->kind == "lidar", "lidar");
+    // The analytic kinds have no random layout.
+    refuse_unused(app, "--seed", o->kind != "canyon" && o->kind != "pit" && o->kind != "plane",
+                  "city, mountains, lidar and footprints");
     ThreadLimit limit(o->out.threads);
     check_output_writable(o->output, o->out.overwrite);
     if (raster) check_output_format(o->out.format, 1, o->out.creation_options);
@@ -59,7 +64,20 @@ Runner setup(CLI::App& app) {
     g.geotransform[3] += o->y0;
     OGRSpatialReference srs;
     if (srs.SetFromUserInput(o->crs.c_str()) != OGRERR_NONE) throw Error("unknown CRS '" + o->crs + "'");
-    if (!srs.IsProjected()) throw Error("--crs must be a projected CRS in metres ('" + o->crs + "' is not)");
+    if (!srs.IsProjected()) {
+      throw Error("--crs must be a projected CRS in metres ('" + o->crs + "' is " +
+                  (srs.IsGeographic() ? "geographic" : "not projected") + ")");
+    }
+    // --cell, --origin and the heights are metres: a CRS in feet would label them wrongly.
+    const char* unit = nullptr;
+    if (std::abs(srs.GetLinearUnits(&unit) - 1.0) > 1e-9) {
+      throw Error("--crs must be a projected CRS in metres ('" + o->crs + "' is in " + (unit ? unit : "unknown units") +
+                  ")");
+    }
+    if (srs.IsVertical() && std::abs(srs.GetTargetLinearUnits("VERT_CS", &unit) - 1.0) > 1e-9) {
+      throw Error("--crs must have heights in metres ('" + o->crs + "' has heights in " +
+                  (unit ? unit : "unknown units") + ")");
+    }
     char* wkt = nullptr;
     srs.exportToWkt(&wkt);
     g.crs_wkt = wkt;

@@ -62,7 +62,8 @@ struct LasWriteOptions {
   std::string crs_wkt;  // written as an OGC WKT VLR when not empty
 };
 
-// Writes `points` as an uncompressed LAS file (synthetic samples and tests).
+// Writes `points` as an uncompressed LAS file (synthetic samples and tests), under a temporary
+// name renamed into place; a file at `path` is replaced only once the new one is complete.
 void write_las(const std::string& path, const std::vector<LasPoint>& points, const LasWriteOptions& options);
 
 }  // namespace skyview

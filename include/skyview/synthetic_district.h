@@ -30,11 +30,13 @@ struct SyntheticDistrict {
 SyntheticDistrict synthetic_district(double x0, double y0, double size, std::uint64_t seed = 1);
 
 // Returns on a jittered lattice of `density` per square metre, classified (2 ground, 6 building,
-// 5 high vegetation), with `birds` isolated returns 40-80 m up (class 1).
+// 5 high vegetation), with `birds` isolated returns 40-80 m up (class 1). Throws beyond
+// 4294967295 returns, all a LAS 1.2 header can count.
 std::vector<LasPoint> district_lidar(const SyntheticDistrict& d, double density, int birds, std::uint64_t seed = 1);
 
-// Writes the footprints (fields: name, base, height; height null where unknown) with any OGR
-// vector driver chosen by extension (.geojson, .gpkg, .shp).
+// Writes the footprints (fields: name, base, height; height null where unknown) with the OGR
+// vector driver the extension names, in any case (.gpkg, .shp, else GeoJSON). The files are
+// complete before they replace an old output (a shapefile with all its side files).
 void write_district_footprints(const std::string& path, const SyntheticDistrict& d, const std::string& crs_wkt,
                                bool overwrite);
 

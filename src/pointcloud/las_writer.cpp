@@ -1,19 +1,19 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <string>
 
 #include "skyview/error.h"
 #include "skyview/las_file.h"
+#include "skyview/raster_io.h"
 
 namespace skyview {
 
 namespace {
 
-template <class T>
-void put(std::vector<std::uint8_t>& b, std::size_t at, T v) {
+template <class T, class Bytes>
+void put(Bytes& b, std::size_t at, T v) {
   std::memcpy(b.data() + at, &v, sizeof v);
 }
 
@@ -56,6 +56,14 @@ void write_las(const std::string& path, const std::vector<LasPoint>& points, con
   put<std::uint16_t>(h, 105, static_cast<std::uint16_t>(base));
   const bool legacy_ok = o.point_format <= 5 && points.size() <= 0xFFFFFFFFu;
   put<std::uint32_t>(h, 107, legacy_ok ? static_cast<std::uint32_t>(points.size()) : 0);
+  // Points by return: legacy 32-bit counts of returns 1..5 at 111, and in LAS 1.4 64-bit counts
+  // of returns 1..15 at 255 (readers show these as the survey's return statistics).
+  std::uint64_t by_return[15] = {};
+  for (const LasPoint& p : points) {
+    const int r = o.point_format >= 6 ? p.return_number & 0x0F : p.return_number & 0x07;
+    if (r >= 1) ++by_return[r - 1];
+  }
+  for (int r = 0; r < 5 && legacy_ok; ++r) put<std::uint32_t>(h, 111 + 4 * r, static_cast<std::uint32_t>(by_return[r]));
   double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
   for (std::size_t i = 0; i < points.size(); ++i) {
     const double v[3] = {points[i].x, points[i].y, points[i].z};
@@ -70,28 +78,31 @@ void write_las(const std::string& path, const std::vector<LasPoint>& points, con
     put<double>(h, 179 + 16 * k, hi[k]);
     put<double>(h, 187 + 16 * k, lo[k]);
   }
-  if (o.version_minor == 4) put<std::uint64_t>(h, 247, points.size());
-  std::vector<std::uint8_t> rec(static_cast<std::size_t>(base) * points.size(), 0);
+  if (o.version_minor == 4) {
+    put<std::uint64_t>(h, 247, points.size());
+    for (int r = 0; r < 15; ++r) put<std::uint64_t>(h, 255 + 8 * r, by_return[r]);
+  }
+  // The whole file in one buffer, written under a temporary name and renamed into place: a failed
+  // write leaves an old file at `path` as it was.
+  std::string bytes(h.size() + vlr.size() + static_cast<std::size_t>(base) * points.size(), '\0');
+  std::copy(h.begin(), h.end(), bytes.begin());
+  std::copy(vlr.begin(), vlr.end(), bytes.begin() + static_cast<std::ptrdiff_t>(h.size()));
   for (std::size_t i = 0; i < points.size(); ++i) {
     const LasPoint& p = points[i];
-    const std::size_t at = i * base;
-    put<std::int32_t>(rec, at, quantise(p.x, o.scale[0], o.offset[0]));
-    put<std::int32_t>(rec, at + 4, quantise(p.y, o.scale[1], o.offset[1]));
-    put<std::int32_t>(rec, at + 8, quantise(p.z, o.scale[2], o.offset[2]));
-    put<std::uint16_t>(rec, at + 12, p.intensity);
+    const std::size_t at = h.size() + vlr.size() + i * base;
+    put<std::int32_t>(bytes, at, quantise(p.x, o.scale[0], o.offset[0]));
+    put<std::int32_t>(bytes, at + 4, quantise(p.y, o.scale[1], o.offset[1]));
+    put<std::int32_t>(bytes, at + 8, quantise(p.z, o.scale[2], o.offset[2]));
+    put<std::uint16_t>(bytes, at + 12, p.intensity);
     if (o.point_format >= 6) {
-      rec[at + 14] = static_cast<std::uint8_t>((p.return_number & 0x0F) | (p.number_of_returns << 4));
-      rec[at + 16] = p.classification;
+      bytes[at + 14] = static_cast<char>((p.return_number & 0x0F) | (p.number_of_returns << 4));
+      bytes[at + 16] = static_cast<char>(p.classification);
     } else {
-      rec[at + 14] = static_cast<std::uint8_t>((p.return_number & 0x07) | ((p.number_of_returns & 0x07) << 3));
-      rec[at + 15] = p.classification & 0x1F;
+      bytes[at + 14] = static_cast<char>((p.return_number & 0x07) | ((p.number_of_returns & 0x07) << 3));
+      bytes[at + 15] = static_cast<char>(p.classification & 0x1F);
     }
   }
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(reinterpret_cast<const char*>(h.data()), static_cast<std::streamsize>(h.size()));
-  out.write(reinterpret_cast<const char*>(vlr.data()), static_cast<std::streamsize>(vlr.size()));
-  out.write(reinterpret_cast<const char*>(rec.data()), static_cast<std::streamsize>(rec.size()));
-  if (!out) throw Error("cannot write '" + path + "'");
+  write_output_file(path, bytes, /*overwrite=*/true);
 }
 
 }  // namespace skyview

@@ -8,6 +8,7 @@
 
 #include <gdal_priv.h>
 
+#include "cli_run.h"
 #include "skyview/error_stats.h"
 #include "skyview/svf_check.h"
 #include "test_support.h"
@@ -16,28 +17,6 @@ using namespace skyview;
 using namespace skyview::test;
 
 namespace {
-
-struct RunResult {
-  int exit_code;
-  std::string err;
-};
-
-RunResult run_skyview(const std::string& args, const std::string& dir) {
-  const std::string err_file = dir + "/stderr.txt";
-  const std::string cmd = std::string(SKYVIEW_EXE) + " " + args + " -q 2>" + err_file + " >/dev/null";
-  const int status = std::system(cmd.c_str());
-  std::ifstream in(err_file);
-  std::string all((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), all};
-}
-
-// Exit 1 for bad data or files, 2 for a bad command line.
-void expect_one_line_error(const RunResult& r, const std::string& fragment, int exit_code = 1) {
-  EXPECT_EQ(r.exit_code, exit_code) << r.err;
-  EXPECT_NE(r.err.find("error: "), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find(fragment), std::string::npos) << r.err;
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-}
 
 class CliErrors : public ::testing::Test {
  protected:
