@@ -71,7 +71,7 @@ void BM_March16R100NoEarlyExit(benchmark::State& s) {
 }
 
 // The arguments are the number of exact near steps (--samples; 64 is the default) and of far lines
-// (--far-lines; 2 is the default). Of sixteen directions on this local grid, eight run along its
+// (--far-lines; 1 is the default). Of sixteen directions on this local grid, eight run along its
 // axes and diagonals, where the sweep pushes each cell onto its own line (no near field, no query).
 void BM_Sweep16(benchmark::State& s) {
   skyview::HorizonParams p;

@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "command.h"
@@ -189,7 +190,14 @@ int print_events(const Options& o, const Site& site, const Period& p) {
   if (last - first > 400000) throw Error("--events covers more than 400000 days");
   // The first and last days first: their events reach half a day beyond them, and a date outside
   // the SPA's years must fail before a line is printed.
-  for (const std::int64_t day : {first, last}) sun_events(civil_from_days(day), p.clock.offset_at(p.first), site);
+  for (const auto& [day, t] : {std::pair{first, p.first}, std::pair{last, p.last}}) {
+    try {
+      sun_events(civil_from_days(day), p.clock.offset_at(t), site, convention);
+    } catch (const Error& e) {
+      if (convention != SunEventDay::local_day) throw;
+      throw Error(std::string(e.what()) + ": a local day's events need the sun half a day either side of its transit");
+    }
+  }
   if (o.csv) {
     std::printf(
         "date,sunrise_utc,transit_utc,sunset_utc,sunrise_local,transit_local,sunset_local,day_length_h,"

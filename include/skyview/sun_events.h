@@ -43,9 +43,9 @@ struct SunEvents {
 // Events for calendar day `date` in a place whose clocks are `utc_offset_s` ahead of UTC that
 // day (only local_day uses the offset). Polar day and night are answers (`kind`), not errors.
 // local_day judges the day by the sun's geometric altitude at its transit and lower culminations
-// and checks SPA's rise and set against it (found by bisection where SPA's are off: on the days
-// around polar day and night its estimate from one declination can be hours wrong); spa_utc_day
-// is the report's algorithm as published, those days included.
+// and takes each event from SPA's estimate by Newton steps on that altitude (bisection where they
+// fail: on the days around polar day and night the estimate from one declination can be hours
+// off); spa_utc_day is the report's algorithm as published, those days included.
 SunEvents sun_events(const CivilDate& date, double utc_offset_s, const Site& site,
                      SunEventDay convention = SunEventDay::local_day,
                      double sunrise_altitude_deg = kSunriseAltitudeDeg);

@@ -37,9 +37,8 @@ double interpolate(double value, double a, double b, double n) { return value + 
 // kind can come out wrong and the times hours off (Tromso, 27 November 2024: sunrise 11:48, transit
 // 11:32, sunset 11:13, called normal, with the sun 0.9 deg under its rise altitude at transit).
 // So the day is judged by the sun's geometric altitude (no refraction: h0 already holds the
-// standard one) at its transit and at the lower culminations either side, and each event SPA gives
-// is kept only where it lies on the right side of the transit and the sun is at h0 there; else
-// the crossing is bisected from the altitudes themselves. Normal days keep SPA's times.
+// standard one) at its transit and half a day either side (the lower culminations), and each
+// event is the crossing of h0 between two of them, found from SPA's estimate where that is good.
 double geometric_altitude(double t, const Site& site) {
   Site bare = site;
   bare.pressure_mbar = 0.0;
@@ -56,32 +55,55 @@ double bisect_crossing(double lo, double hi, const Site& site, double h0, bool r
   return 0.5 * (lo + hi);
 }
 
+// The crossing of h0 in (lo, hi), from SPA's estimate where there is one: Newton steps on the
+// altitude (its rate from a 10 s difference). SPA's time stands where the first step is under a
+// second (normal days keep the report's times); the steps go on to 0.01 s where it is off (near
+// polar day and night the altitude changes slowly, and an estimate 0.014 deg off was 6.5 minutes
+// off at 66 N); bisection where they leave the bracket or the estimate is missing.
+double crossing(const std::optional<double>& estimate, double lo, double hi, const Site& site, double h0, bool rising) {
+  if (estimate && *estimate > lo && *estimate < hi) {
+    double t = *estimate;
+    for (int i = 0; i < 12; ++i) {
+      const double a = geometric_altitude(t, site) - h0;
+      const double rate = (geometric_altitude(t + 10.0, site) - h0 - a) / 10.0;
+      if (!(rising ? rate > 0.0 : rate < 0.0)) break;
+      const double step = -a / rate;
+      if (i == 0 && std::abs(step) < 1.0) return t;
+      t += step;
+      if (!(t > lo && t < hi)) break;
+      if (std::abs(step) < 0.01) return t;
+    }
+  }
+  return bisect_crossing(lo, hi, site, h0, rising);
+}
+
 void check_against_altitudes(SunEvents& e, const Site& site, double h0) {
-  const double transit = e.transit_utc;
+  const double before = e.lower_before_utc, transit = e.transit_utc, after = e.lower_after_utc;
+  const bool up_before = geometric_altitude(before, site) >= h0;
   const bool up_at_transit = geometric_altitude(transit, site) >= h0;
-  const bool rises = up_at_transit && geometric_altitude(e.lower_before_utc, site) < h0;
-  const bool sets = up_at_transit && geometric_altitude(e.lower_after_utc, site) < h0;
-  // SPA's event is kept where it lies between the culminations and the sun is within 0.05 deg of
-  // h0 there (a few seconds of time at mid-latitudes), so that normal days keep the report's times.
-  auto checked = [&](const std::optional<double>& spa, double lo, double hi, bool rising) {
-    if (spa && *spa > lo && *spa < hi && std::abs(geometric_altitude(*spa, site) - h0) < 0.05) return *spa;
-    return bisect_crossing(lo, hi, site, h0, rising);
-  };
+  const bool up_after = geometric_altitude(after, site) >= h0;
+  // The sun rises between a lower culmination and the transit, and sets after; within a tenth of a
+  // degree of a pole, where the daily swing is smaller than the declination's change, it can also
+  // rise after the transit (or set before it).
   std::optional<double> sunrise, sunset;
-  if (rises) sunrise = checked(e.sunrise_utc, e.lower_before_utc, transit, true);
-  if (sets) sunset = checked(e.sunset_utc, transit, e.lower_after_utc, false);
+  if (!up_before && up_at_transit)
+    sunrise = crossing(e.sunrise_utc, before, transit, site, h0, true);
+  else if (!up_at_transit && up_after)
+    sunrise = crossing(e.sunrise_utc, transit, after, site, h0, true);
+  if (up_at_transit && !up_after)
+    sunset = crossing(e.sunset_utc, transit, after, site, h0, false);
+  else if (up_before && !up_at_transit)
+    sunset = crossing(e.sunset_utc, before, transit, site, h0, false);
   e.sunrise_utc = sunrise;
   e.sunset_utc = sunset;
-  if (!up_at_transit)
-    e.kind = DayKind::polar_night;
-  else if (rises && sets)
+  if (sunrise && sunset)
     e.kind = DayKind::normal;
-  else if (rises)
+  else if (sunrise)
     e.kind = DayKind::no_sunset;
-  else if (sets)
+  else if (sunset)
     e.kind = DayKind::no_sunrise;
   else
-    e.kind = DayKind::polar_day;
+    e.kind = up_at_transit ? DayKind::polar_day : DayKind::polar_night;
 }
 
 }  // namespace
