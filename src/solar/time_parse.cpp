@@ -136,11 +136,14 @@ ParsedTime parse_time(const std::string& text, const std::string& default_zone) 
   } else if (in.peek() == '+' || in.peek() == '-') {
     const double offset_sign = in.accept('-') ? -1.0 : (in.accept('+'), 1.0);
     const long hours = in.digits(2, "a two-digit offset hour");
-    long minutes = 0;
-    if (in.accept(':') || !in.done()) minutes = in.digits(2, "two-digit offset minutes");
-    if (hours > 18 || minutes > 59 || (hours == 18 && minutes > 0))
+    long minutes = 0, seconds = 0;
+    const bool extended = in.accept(':');
+    if (extended || !in.done()) minutes = in.digits(2, "two-digit offset minutes");
+    // Local mean time's seconds, as skyview prints them (+01:19:32), read back.
+    if (extended && in.accept(':')) seconds = in.digits(2, "two-digit offset seconds");
+    if (hours > 18 || minutes > 59 || seconds > 59 || (hours == 18 && minutes + seconds > 0))
       throw Error("UTC offset in '" + text + "' is outside -18:00..+18:00");
-    offset = offset_sign * (hours * 3600.0 + minutes * 60.0);
+    offset = offset_sign * (hours * 3600.0 + minutes * 60.0 + static_cast<double>(seconds));
   }
   if (!in.done()) in.fail("the end of the time or a UTC offset");
 

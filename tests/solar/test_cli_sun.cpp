@@ -132,4 +132,7 @@ TEST(SunCli, EventDatesAndOffsetsSayWhatTheyMean) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("1930-06-21T10:40:28Z"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("1930-06-21T12:00:00+01:19:32"), std::string::npos) << r.out;
+  r = run_sun("--lat 52.37 --lon 4.89 --time 1930-06-21T12:00:00+01:19:32 --csv");  // read back
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("1930-06-21T10:40:28Z"), std::string::npos) << r.out;
 }
