@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "skyview/error.h"
+#include "skyview/number_text.h"
 #include "skyview/raster_io.h"
 
 namespace skyview {
@@ -42,10 +43,15 @@ Terrain rasterize(const HeightFunction& f, int width, int height, const GeoRefer
     std::unique_ptr<OGRSpatialReference> geog(srs.CloneGeogCS());
     geog->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
     std::unique_ptr<OGRCoordinateTransformation> ct(OGRCreateCoordinateTransformation(&srs, geog.get()));
-    if (!ct || !ct->Transform(static_cast<int>(xs.size()), xs.data(), ys.data())) throw Error("cannot rasterise");
     double cx = georef.x_of((width - 1) / 2.0, (height - 1) / 2.0),
            cy = georef.y_of((width - 1) / 2.0, (height - 1) / 2.0);
-    ct->Transform(1, &cx, &cy);
+    std::string centre = number_text(cx);  // appended: GCC 12 warns falsely (-Wrestrict) on "(" + ...
+    centre += ", " + number_text(cy);
+    if (!ct) throw Error("cannot rasterise: the CRS has no transformation to its geographic CRS");
+    if (!ct->Transform(static_cast<int>(xs.size()), xs.data(), ys.data()) || !ct->Transform(1, &cx, &cy)) {
+      throw Error("cannot rasterise: the grid around (" + centre + ")" +
+                  " lies partly outside where its CRS projects (choose --origin and --northing inside it)");
+    }
     const double invf = srs.GetInvFlattening();  // 0 for a sphere
     const GeographicLib::LocalCartesian local(
         cy, cx, 0.0, GeographicLib::Geocentric(srs.GetSemiMajor(), invf == 0.0 ? 0.0 : 1.0 / invf));

@@ -156,6 +156,9 @@ TEST(SynthCli, CrsMustBeProjectedInMetres) {
                         "--crs must be a projected CRS in metres ('EPSG:4326' is geographic)");
   expect_one_line_error(run_skyview("synth plane " + out + " --size 11 --crs EPSG:32633+6360", dir),
                         "has heights in US survey foot");
+  // A grid placed where the CRS does not project (Albers USA, 6400 km north of its origin).
+  expect_one_line_error(run_skyview("synth pit " + out + " --size 11 --crs ESRI:102003", dir),
+                        "lies partly outside where its CRS projects");
   EXPECT_EQ(files_in(dir), std::set<std::string>{});
   // Metres both ways pass.
   const RunResult r = run_skyview("synth plane " + out + " --size 11 --crs EPSG:32633+5773", dir);
