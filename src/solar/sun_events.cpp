@@ -57,7 +57,8 @@ double bisect_crossing(double lo, double hi, const Site& site, double h0, bool r
 
 // The crossing of h0 in (lo, hi), from SPA's estimate where there is one: Newton steps on the
 // altitude (its rate from a 10 s difference). SPA's time stands where the first step is under a
-// second (normal days keep the report's times); the steps go on to 0.01 s where it is off (near
+// second (at mid-latitudes; the topocentric altitude holds the parallax that the report's
+// geocentric A.2 leaves out, 2 s at 60 N); the steps go on to 0.01 s where it is off (near
 // polar day and night the altitude changes slowly, and an estimate 0.014 deg off was 6.5 minutes
 // off at 66 N); bisection where they leave the bracket or the estimate is missing.
 double crossing(const std::optional<double>& estimate, double lo, double hi, const Site& site, double h0, bool rising) {
