@@ -92,9 +92,10 @@ void BM_Sweep15(benchmark::State& s) {
 // planes that the run reuses (each iteration faults in about two per worker, 64 MB each at
 // 4000^2, and the workers' hull arenas), where BM_Sweep16 faults in and fills a whole 1 GB field.
 // The sink only touches each plane; the products are BM_SvfStreamed16's.
-void BM_Sweep16Streamed(benchmark::State& state) {
+void run_streamed(benchmark::State& state, int directions) {
   const skyview::Terrain& t = city(bench_size());
   skyview::HorizonParams p;
+  p.directions = directions;
   p.samples = static_cast<int>(state.range(0));
   p.far_lines = static_cast<int>(state.range(1));
   auto engine = skyview::make_horizon_engine("sweep", p);
@@ -109,6 +110,10 @@ void BM_Sweep16Streamed(benchmark::State& state) {
   state.counters["cell_dirs_per_s"] = benchmark::Counter(static_cast<double>(t.width()) * t.height() * p.directions,
                                                          benchmark::Counter::kIsIterationInvariantRate);
 }
+void BM_Sweep16Streamed(benchmark::State& state) { run_streamed(state, 16); }
+// The oblique cost as `skyview svf` pays it with the default sectors from true north on a
+// projected raster, where no direction runs along the grid.
+void BM_Sweep15Streamed(benchmark::State& state) { run_streamed(state, 15); }
 void BM_Sweep16WithLower(benchmark::State& s) {
   skyview::HorizonParams p;
   p.lower = true;
@@ -278,6 +283,7 @@ BENCHMARK(BM_Sweep16Streamed)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);
+BENCHMARK(BM_Sweep15Streamed)->Args({64, 1})->Args({16, 1})->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_Sweep16WithLower)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_SvfWhole16)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_SvfStreamed16)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);

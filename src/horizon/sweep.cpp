@@ -45,6 +45,7 @@
 
 #include "earth_curvature.h"
 #include "fast_atan.h"
+#include "large_buffer.h"
 #include "methods.h"
 #include "skyview/error.h"
 #include "skyview/number_text.h"
@@ -721,7 +722,7 @@ class BandScratch {
   void prepare(std::size_t capacity, int walks, std::size_t row, WalkState* state) {
     const std::size_t lines = static_cast<std::size_t>(kBand + 1) * walks;
     if (capacity * lines > points_size_) {
-      points_.reset(new HullPoint[capacity * lines]);
+      points_ = allocate_large<HullPoint>(capacity * lines);
       points_size_ = capacity * lines;
     }
     hulls_.resize(lines);
@@ -731,7 +732,7 @@ class BandScratch {
   }
 
  private:
-  std::unique_ptr<HullPoint[]> points_;
+  LargeBuffer<HullPoint> points_;
   std::size_t points_size_ = 0;
   std::vector<LineHull> hulls_;
   std::vector<float> best_;
@@ -844,7 +845,7 @@ class SweepEngine final : public HorizonEngine {
     const Inputs in = inputs(terrain, out.sector_rotation);
     const std::size_t cells = window.cells();
     struct Planes {
-      std::unique_ptr<float[]> upper, lower;
+      LargeBuffer<float> upper, lower;
     };
     std::mutex mutex;
     std::map<int, Planes> finished;
@@ -864,8 +865,8 @@ class SweepEngine final : public HorizonEngine {
         if (!spare.empty()) planes = std::move(spare.back()), spare.pop_back();
       }
       if (!planes.upper) {
-        planes.upper.reset(new float[cells]);
-        if (p_.lower) planes.lower.reset(new float[cells]);
+        planes.upper = allocate_large<float>(cells);
+        if (p_.lower) planes.lower = allocate_large<float>(cells);
       }
       sweep(terrain, in, window, k, scratches, planes.upper.get(), planes.lower.get());
       progress.advance(direction_share(cells, k));
@@ -893,22 +894,29 @@ class SweepEngine final : public HorizonEngine {
   struct Inputs {
     double c;
     double rotation;  // of the direction set (HorizonField::sector_rotation)
-    std::vector<float> transposed;
+    LargeBuffer<float> transposed;
   };
   Inputs inputs(const Terrain& terrain, double rotation) const {
     Inputs in;
     in.c = curvature_coefficient(terrain);
     in.rotation = rotation;
     const int W = terrain.width(), H = terrain.height();
-    in.transposed.resize(static_cast<std::size_t>(W) * H);
-    for (int r = 0; r < H; ++r) {
-      for (int col = 0; col < W; ++col) in.transposed[static_cast<std::size_t>(col) * H + r] = terrain.heights(col, r);
+    in.transposed = allocate_large<float>(static_cast<std::size_t>(W) * H);
+    // In tiles, so that both the reads and the writes stay within cache lines already loaded.
+    constexpr int kTile = 64;
+    for (int r0 = 0; r0 < H; r0 += kTile) {
+      for (int c0 = 0; c0 < W; c0 += kTile) {
+        for (int col = c0; col < std::min(W, c0 + kTile); ++col) {
+          for (int r = r0; r < std::min(H, r0 + kTile); ++r)
+            in.transposed[static_cast<std::size_t>(col) * H + r] = terrain.heights(col, r);
+        }
+      }
     }
     return in;
   }
   void sweep(const Terrain& terrain, const Inputs& in, const Window& window, int k, BandScratches& scratches,
              float* upper, float* lower) const {
-    sweep_direction(terrain, in.transposed.data(), window, sector_azimuth(k, p_.directions) + in.rotation, in.c,
+    sweep_direction(terrain, in.transposed.get(), window, sector_azimuth(k, p_.directions) + in.rotation, in.c,
                     p_.samples, p_.far_lines, p_.early_exit, radius(), scratches, upper, lower);
   }
 
