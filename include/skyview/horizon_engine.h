@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "skyview/large_pages.h"
 #include "skyview/progress.h"
 #include "skyview/terrain.h"
 
@@ -48,8 +49,10 @@ struct HorizonParams {
 // writes a cache-line read and write.
 struct HorizonField {
   int cols = 0, rows = 0, directions = 0;
-  std::vector<float> upper;     // radians, [direction][cell]; NaN on nodata cells
-  std::vector<float> lower;     // radians, lowest angle seen; empty unless requested
+  // Huge pages where granted: a field of 16 directions at 4000 x 4000 is 1 GB, written a plane at a
+  // time down columns by the sweep (see large_pages.h).
+  std::vector<float, LargePageAllocator<float>> upper;  // radians, [direction][cell]; NaN on nodata cells
+  std::vector<float, LargePageAllocator<float>> lower;  // radians, lowest angle seen; empty unless requested
   double sector_rotation = 0;   // azimuth of sector 0's centre (radians; HorizonParams::azimuth_origin)
   std::vector<float> rotation;  // per-cell azimuth offset of the direction set (radians); empty = 0
   // Monte-Carlo estimates some methods (raycast) give directly; empty otherwise.

@@ -45,9 +45,9 @@
 
 #include "earth_curvature.h"
 #include "fast_atan.h"
-#include "large_buffer.h"
 #include "methods.h"
 #include "skyview/error.h"
+#include "skyview/large_pages.h"
 #include "skyview/number_text.h"
 
 namespace skyview::detail {
