@@ -74,6 +74,27 @@ struct RawBand {
   double nodata = 0;
 };
 
+// Decodes a compressed raster's blocks on as many threads as the run may use (--threads), unless
+// the user set GDAL_NUM_THREADS: one thread took 0.36-0.43 s to read a 4000 x 4000 DEFLATE GeoTIFF,
+// two 0.12-0.13 s. Thread-local, so that nothing else this thread does later sees it.
+class DecodeThreads {
+ public:
+  DecodeThreads() {
+    if (CPLGetConfigOption("GDAL_NUM_THREADS", nullptr)) return;
+    const auto threads = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+    CPLSetThreadLocalConfigOption("GDAL_NUM_THREADS", std::to_string(threads).c_str());
+    set_ = true;
+  }
+  ~DecodeThreads() {
+    if (set_) CPLSetThreadLocalConfigOption("GDAL_NUM_THREADS", nullptr);
+  }
+  DecodeThreads(const DecodeThreads&) = delete;
+  DecodeThreads& operator=(const DecodeThreads&) = delete;
+
+ private:
+  bool set_ = false;
+};
+
 RawBand read_raw_band(const std::string& path, int band_index) {
   init_gdal();
   if (!path_exists(path)) throw Error("cannot open '" + path + "': no such file");
@@ -81,6 +102,7 @@ RawBand read_raw_band(const std::string& path, int band_index) {
   RawBand r;
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw Error("'" + path + "' is a folder, not a raster");
+  const DecodeThreads decode_threads;
   r.ds.reset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
   if (!r.ds) {  // GDAL says nothing when no driver recognises the file
     throw Error("cannot open '" + path +
