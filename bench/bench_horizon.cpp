@@ -111,8 +111,9 @@ void run_streamed(benchmark::State& state, int directions) {
                                                          benchmark::Counter::kIsIterationInvariantRate);
 }
 void BM_Sweep16Streamed(benchmark::State& state) { run_streamed(state, 16); }
-// The oblique cost as `skyview svf` pays it with the default sectors from true north on a
-// projected raster, where no direction runs along the grid.
+// The oblique cost as `skyview svf` pays it where few sectors run along the grid: with
+// `--azimuth-origin north` on a projected raster, or a number of directions not a multiple of 8
+// (of 15, only the first runs along the grid).
 void BM_Sweep15Streamed(benchmark::State& state) { run_streamed(state, 15); }
 void BM_Sweep16WithLower(benchmark::State& s) {
   skyview::HorizonParams p;
