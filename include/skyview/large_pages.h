@@ -4,7 +4,7 @@
 // transparent huge pages (most systems grant them only on request), so that a 64 MB plane faults in
 // with 32 faults instead of 16384, and a sweep direction that walks columns, which writes each cell
 // of its row into another row of the plane 16 KB on, does not touch a new page per cell. Measured in
-// docs/benchmarks.md (Dec 4): the oblique streamed sweep at 4000 x 4000 went from 62 to 71 M
+// docs/benchmarks.md (Dec 4): the oblique streamed sweep at 4000 x 4000 went from 62 to 68-72 M
 // cell-directions/s. Where the kernel declines, this is plain memory.
 #include <cstddef>
 #include <memory>
