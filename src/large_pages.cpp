@@ -10,14 +10,13 @@
 namespace skyview {
 
 void* allocate_large_pages(std::size_t bytes) {
-  constexpr std::size_t kHuge = std::size_t{2} << 20;
-  if (bytes < kHuge) {
+  if (bytes < kHugePageBytes) {
     void* p = std::malloc(bytes > 0 ? bytes : 1);
     if (!p) throw std::bad_alloc();
     return p;
   }
-  const std::size_t rounded = (bytes + kHuge - 1) / kHuge * kHuge;
-  void* p = std::aligned_alloc(kHuge, rounded);
+  const std::size_t rounded = (bytes + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
+  void* p = std::aligned_alloc(kHugePageBytes, rounded);
   if (!p) throw std::bad_alloc();
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   madvise(p, rounded, MADV_HUGEPAGE);  // a hint: where it fails the pages stay ordinary

@@ -49,8 +49,8 @@ struct HorizonParams {
 // writes a cache-line read and write.
 struct HorizonField {
   int cols = 0, rows = 0, directions = 0;
-  // Huge pages where granted: a field of 16 directions at 4000 x 4000 is 1 GB, written a plane at a
-  // time down columns by the sweep (see large_pages.h).
+  // Huge pages where granted: a field of 16 directions at 4000 x 4000 is 1 GB, and the sweep writes
+  // the plane of a direction nearer east-west down its columns (see large_pages.h).
   std::vector<float, LargePageAllocator<float>> upper;  // radians, [direction][cell]; NaN on nodata cells
   std::vector<float, LargePageAllocator<float>> lower;  // radians, lowest angle seen; empty unless requested
   double sector_rotation = 0;   // azimuth of sector 0's centre (radians; HorizonParams::azimuth_origin)

@@ -5,11 +5,16 @@
 // with 32 faults instead of 16384, and a sweep direction that walks columns, which writes each cell
 // of its row into another row of the plane 16 KB on, does not touch a new page per cell. Measured in
 // docs/benchmarks.md (Dec 4): the oblique streamed sweep at 4000 x 4000 went from 62 to 68-72 M
-// cell-directions/s. Where the kernel declines, this is plain memory.
+// cell-directions/s, the whole-field path from 30-39 to 45-65. Where the kernel declines, this is
+// plain memory.
 #include <cstddef>
 #include <memory>
 
 namespace skyview {
+
+// The size of an x86-64 huge page: blocks of at least this much start on a multiple of it and ask
+// for huge pages; smaller ones are ordinary heap memory.
+constexpr std::size_t kHugePageBytes = std::size_t{2} << 20;
 
 // Uninitialised storage; throws std::bad_alloc. Freed by free_large_pages only.
 void* allocate_large_pages(std::size_t bytes);

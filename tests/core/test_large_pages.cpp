@@ -12,14 +12,13 @@
 using namespace skyview;
 
 TEST(LargePages, LargeBlocksStartOnAHugePageAndHoldTheirValues) {
-  constexpr std::size_t kHuge = std::size_t{2} << 20;
-  const std::size_t n = 5 * kHuge / sizeof(float) + 3;  // not a whole number of huge pages
+  const std::size_t n = 5 * kHugePageBytes / sizeof(float) + 3;  // not a whole number of huge pages
   LargeBuffer<float> b = allocate_large<float>(n);
   ASSERT_NE(b.get(), nullptr);
-  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(b.get()) % kHuge, 0u);
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(b.get()) % kHugePageBytes, 0u);
   for (std::size_t i = 0; i < n; ++i) b[i] = static_cast<float>(i % 1000);
   EXPECT_EQ(b[n - 1], static_cast<float>((n - 1) % 1000));
-  EXPECT_EQ(b[kHuge / sizeof(float)], static_cast<float>((kHuge / sizeof(float)) % 1000));
+  EXPECT_EQ(b[kHugePageBytes / sizeof(float)], static_cast<float>((kHugePageBytes / sizeof(float)) % 1000));
 }
 
 TEST(LargePages, SmallAndEmptyBlocksAreUsable) {
