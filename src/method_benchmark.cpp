@@ -1,6 +1,5 @@
 #include "skyview/method_benchmark.h"
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
@@ -305,9 +304,9 @@ void plot_bench(const std::string& png_path, const std::string& title, const std
     y += 20;
   }
   cv::putText(img, "line: Pareto front", cv::Point(W - 185, y + 5), cv::FONT_HERSHEY_SIMPLEX, 0.45, black);
-  std::vector<unsigned char> png;
-  if (!cv::imencode(".png", img, png)) throw Error("cannot encode the plot '" + png_path + "'");
-  write_output_file(png_path, std::string(png.begin(), png.end()), overwrite);
+  cv::Mat rgb;
+  cv::cvtColor(img, rgb, cv::COLOR_BGR2RGB);
+  write_png(png_path, rgb.cols, rgb.rows, 3, rgb.ptr<std::uint8_t>(0), overwrite);
 }
 
 }  // namespace skyview

@@ -666,21 +666,30 @@ void write_terrain(const std::string& path, const Terrain& t, const WriteOptions
   write_bands(path, t.width(), t.height(), t.georef, {{"height", "metre", z.data(), {}}}, options);
 }
 
+void write_png(const std::string& path, int width, int height, int channels, const std::uint8_t* pixels,
+               bool overwrite) {
+  if (channels < 1 || channels > 4 || width < 1 || height < 1)
+    throw Error("cannot write the picture '" + path + "': no pixels (internal error)");
+  init_gdal();
+  DatasetPtr ds = make_memory_dataset(width, height, channels, GDT_Byte);
+  // Interleaved samples: pixel spacing `channels`, line spacing a row of them, band spacing 1.
+  const GSpacing pixel = channels, line = static_cast<GSpacing>(width) * channels;
+  if (ds->RasterIO(GF_Write, 0, 0, width, height, const_cast<std::uint8_t*>(pixels), width, height, GDT_Byte, channels,
+                   nullptr, pixel, line, 1, nullptr) != CE_None) {
+    throw Error("cannot build the picture '" + path + "'");
+  }
+  commit_dataset(ds.get(), path, "PNG", {}, overwrite);
+}
+
 void write_preview_png(const std::string& path, int width, int height, const float* values, double lo, double hi,
                        bool overwrite) {
-  init_gdal();
-  DatasetPtr ds = make_memory_dataset(width, height, 1, GDT_Byte);
   std::vector<std::uint8_t> pixels(static_cast<std::size_t>(width) * height);
   const double scale = hi > lo ? 255.0 / (hi - lo) : 0.0;
   for (std::size_t i = 0; i < pixels.size(); ++i) {
     const double v = values[i];
     pixels[i] = std::isnan(v) ? 0 : static_cast<std::uint8_t>(std::clamp((v - lo) * scale, 0.0, 255.0) + 0.5);
   }
-  if (ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, width, height, pixels.data(), width, height, GDT_Byte, 0, 0) !=
-      CE_None) {
-    throw Error("cannot build the preview '" + path + "'");
-  }
-  commit_dataset(ds.get(), path, "PNG", {}, overwrite);
+  write_png(path, width, height, 1, pixels.data(), overwrite);
 }
 
 }  // namespace skyview

@@ -94,6 +94,12 @@ void write_bands(const std::string& path, int width, int height, const GeoRefere
 // Writes absolute heights (base + relative) as one float32 band named "height" in metres.
 void write_terrain(const std::string& path, const Terrain& terrain, const WriteOptions& options);
 
+// Writes an 8-bit PNG of `channels` (1 grey, 3 RGB, 4 RGBA) interleaved samples per pixel, rows
+// top to bottom, through GDAL's PNG driver, under a temporary name renamed into place. Throws
+// skyview::Error if `path` exists and !overwrite, or if writing fails.
+void write_png(const std::string& path, int width, int height, int channels, const std::uint8_t* pixels,
+               bool overwrite);
+
 // Writes a greyscale 8-bit PNG of `values` scaled linearly from [lo, hi] to [0, 255]; nodata black.
 void write_preview_png(const std::string& path, int width, int height, const float* values, double lo, double hi,
                        bool overwrite);

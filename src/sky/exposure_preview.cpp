@@ -1,10 +1,10 @@
-// Exposure-map preview: two colour-mapped panels with scale bars, drawn with OpenCV.
+// Exposure-map preview: two colour-mapped panels with scale bars, drawn with OpenCV and encoded by
+// GDAL's PNG driver (OpenCV's image codecs would bring about 20 more shared libraries to every run's
+// start).
 #include "skyview/exposure_preview.h"
 
 #include <algorithm>
 #include <cstdio>
-#include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
@@ -71,18 +71,9 @@ void write_exposure_preview(const std::string& path, const ExposureMap& map, boo
   cv::Mat canvas(2 * panel + kMargin, map.width() + 3 * kMargin + kBar + kLabel, CV_8UC3, cv::Scalar(255, 255, 255));
   draw_panel(canvas, kMargin, map, ExposureBand::diffuse, "diffuse (zenith top, N-E-S-W-N left to right)");
   draw_panel(canvas, kMargin + panel, map, ExposureBand::direct, "direct (sun splatted over its disc)");
-  const std::filesystem::path target(path);
-  const std::filesystem::path temp = target.parent_path() / (".tmp_" + target.filename().string());
-  bool ok = false;
-  try {
-    ok = cv::imwrite(temp.string() + ".png", canvas);
-  } catch (const cv::Exception&) {
-    ok = false;
-  }
-  if (!ok) throw Error(path + ": cannot write PNG preview");
-  std::error_code ec;
-  std::filesystem::rename(temp.string() + ".png", target, ec);
-  if (ec) throw Error(path + ": cannot write PNG preview (" + ec.message() + ")");
+  cv::Mat rgb;
+  cv::cvtColor(canvas, rgb, cv::COLOR_BGR2RGB);
+  write_png(path, rgb.cols, rgb.rows, 3, rgb.ptr<std::uint8_t>(0), overwrite);
 }
 
 }  // namespace skyview

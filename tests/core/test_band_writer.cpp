@@ -1,6 +1,6 @@
 // BandWriter: bands written one at a time, in any order, appear at the path only when finished;
-// an abandoned writer leaves nothing behind and keeps what was there. write_output_file: the same
-// for files that are not rasters.
+// an abandoned writer leaves nothing behind and keeps what was there. write_output_file and
+// write_png: the same for files that are not georeferenced rasters.
 #include <gdal_priv.h>
 
 #include <filesystem>
@@ -184,6 +184,43 @@ TEST(OutputFile, ReplacesOnlyWithOverwriteAndLeavesNoTemporary) {
   EXPECT_EQ(contents(), "new");
   EXPECT_EQ(files_in(scratch.dir), 1u);
   EXPECT_THROW(write_output_file(scratch.dir + "/no/such/folder.json", "x", true), skyview::Error);
+}
+
+// Pictures (previews, plots) through GDAL's PNG driver: interleaved samples land in their bands in
+// order (red first), and an existing picture is kept without overwrite.
+TEST(OutputFile, PngKeepsChannelOrderAndRefusesToReplace) {
+  const Scratch scratch;
+  const std::string path = scratch.dir + "/picture.png";
+  constexpr int kW2 = 3, kH2 = 2;
+  std::vector<std::uint8_t> rgb(kW2 * kH2 * 3);
+  for (int i = 0; i < kW2 * kH2; ++i) {
+    rgb[3 * i] = static_cast<std::uint8_t>(10 * i);       // red
+    rgb[3 * i + 1] = static_cast<std::uint8_t>(100 + i);  // green
+    rgb[3 * i + 2] = static_cast<std::uint8_t>(250 - i);  // blue
+  }
+  write_png(path, kW2, kH2, 3, rgb.data(), false);
+  {
+    std::unique_ptr<GDALDataset> ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+    ASSERT_TRUE(ds);
+    EXPECT_STREQ(ds->GetDriver()->GetDescription(), "PNG");
+    ASSERT_EQ(ds->GetRasterCount(), 3);
+    ASSERT_EQ(ds->GetRasterXSize(), kW2);
+    ASSERT_EQ(ds->GetRasterYSize(), kH2);
+    for (int b = 0; b < 3; ++b) {
+      std::vector<std::uint8_t> band(kW2 * kH2);
+      ASSERT_EQ(ds->GetRasterBand(b + 1)->RasterIO(GF_Read, 0, 0, kW2, kH2, band.data(), kW2, kH2, GDT_Byte, 0, 0),
+                CE_None);
+      for (int i = 0; i < kW2 * kH2; ++i) EXPECT_EQ(band[i], rgb[3 * i + b]) << "band " << b + 1 << " pixel " << i;
+    }
+  }
+  const std::vector<std::uint8_t> grey(kW2 * kH2, 7);
+  EXPECT_THROW(write_png(path, kW2, kH2, 1, grey.data(), false), skyview::Error);
+  write_png(path, kW2, kH2, 1, grey.data(), true);
+  std::unique_ptr<GDALDataset> ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  ASSERT_TRUE(ds);
+  EXPECT_EQ(ds->GetRasterCount(), 1);
+  ds.reset();
+  EXPECT_EQ(files_in(scratch.dir), 1u);
 }
 
 }  // namespace
