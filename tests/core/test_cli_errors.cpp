@@ -72,6 +72,34 @@ TEST_F(CliErrors, DsmSaysWhichReturnsWereGround) {
   }
 }
 
+// PCL sits in a module loaded on first use (src/pointcloud/pcl_module.h): a run that needs no PCL
+// works without it; one that does (a PLY cloud, --denoise) gets one line naming what to set, and
+// writes nothing.
+TEST_F(CliErrors, OnlyRunsThatUsePclNeedItsModule) {
+  ASSERT_EQ(run_skyview("synth lidar " + dir + "/d.las --size 64", dir).exit_code, 0);
+  std::ofstream(dir + "/p.ply") << "ply\nformat ascii 1.0\nelement vertex 2\nproperty double x\nproperty double y\n"
+                                   "property double z\nend_header\n500002.5 6400008.5 10\n500000.5 6400009.5 5\n";
+  const std::string none = dir + "/no_modules";
+  std::filesystem::create_directories(none);
+  struct ModuleDir {  // the children inherit it; restored whatever the test's outcome
+    explicit ModuleDir(const std::string& d) { setenv("SKYVIEW_MODULE_DIR", d.c_str(), 1); }
+    ~ModuleDir() { unsetenv("SKYVIEW_MODULE_DIR"); }
+  };
+  {
+    const ModuleDir env(none);
+    EXPECT_EQ(run_skyview("dsm " + dir + "/las.tif --points " + dir + "/d.las", dir).exit_code, 0);
+    expect_one_line_error(run_skyview("dsm " + dir + "/ply.tif --points " + dir + "/p.ply --s_srs EPSG:32633", dir),
+                          "PCL module: no libskyview_pcl.so in " + none);
+    expect_one_line_error(run_skyview("dsm " + dir + "/denoised.tif --points " + dir + "/d.las --denoise", dir),
+                          "set SKYVIEW_MODULE_DIR");
+    EXPECT_FALSE(std::filesystem::exists(dir + "/ply.tif"));
+    EXPECT_FALSE(std::filesystem::exists(dir + "/denoised.tif"));
+  }
+  const ModuleDir env(std::filesystem::path(SKYVIEW_EXE).parent_path().string());
+  EXPECT_EQ(run_skyview("dsm " + dir + "/ply.tif --points " + dir + "/p.ply --s_srs EPSG:32633", dir).exit_code, 0);
+  EXPECT_EQ(run_skyview("dsm " + dir + "/denoised.tif --points " + dir + "/d.las --denoise", dir).exit_code, 0);
+}
+
 TEST_F(CliErrors, SingleCellRaster) {
   write_terrain(dir + "/one.tif", rasterize(circular_pit(5, 5), 1, 1, local_grid(1, 1, 1.0)), {});
   expect_one_line_error(run_skyview("svf " + dir + "/one.tif " + dir + "/o.tif", dir), "single cell");
