@@ -1,5 +1,6 @@
 // Throughput of every horizon method in cell-directions per second on a synthetic city DSM.
-// Run: ./build/bench_horizon [--benchmark_filter=...]; sizes via SKYVIEW_BENCH_SIZE (default 2000).
+// Run: ./build/bench_horizon [--benchmark_filter=...]; sizes via SKYVIEW_BENCH_SIZE (default 2000), or
+// any raster via SKYVIEW_BENCH_DSM.
 #include <benchmark/benchmark.h>
 #include <tbb/parallel_for.h>
 
@@ -12,12 +13,18 @@
 #include <vector>
 
 #include "skyview/horizon_engine.h"
+#include "skyview/raster_io.h"
 #include "skyview/sky_view.h"
 #include "skyview/synthetic.h"
 
 namespace {
 
 const skyview::Terrain& city(int size) {
+  // SKYVIEW_BENCH_DSM names a raster to run on instead (a real city; SKYVIEW_BENCH_SIZE is then unused).
+  if (const char* path = std::getenv("SKYVIEW_BENCH_DSM"); path && *path) {
+    static const skyview::Terrain dsm = skyview::read_terrain(path, skyview::ReadOptions{});
+    return dsm;
+  }
   static std::map<int, skyview::Terrain> cache;
   auto it = cache.find(size);
   if (it == cache.end()) {
@@ -96,6 +103,7 @@ void run_streamed(benchmark::State& state, int directions) {
   const skyview::Terrain& t = city(bench_size());
   skyview::HorizonParams p;
   p.directions = directions;
+  p.azimuth_origin = skyview::AzimuthOrigin::grid;  // skyview svf's default (the library's is true north)
   p.samples = static_cast<int>(state.range(0));
   p.far_lines = static_cast<int>(state.range(1));
   auto engine = skyview::make_horizon_engine("sweep", p);
