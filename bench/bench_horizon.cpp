@@ -36,6 +36,15 @@ const skyview::Terrain& city(int size) {
   return it->second;
 }
 
+// Parameters as the command line starts them: sectors from grid north (the library's default is
+// true north, which on a raster with grid convergence puts the sweep's axis directions just off the
+// grid, onto its oblique path).
+skyview::HorizonParams as_skyview_runs() {
+  skyview::HorizonParams p;
+  p.azimuth_origin = skyview::AzimuthOrigin::grid;
+  return p;
+}
+
 int bench_size() {
   const char* s = std::getenv("SKYVIEW_BENCH_SIZE");
   return s ? std::atoi(s) : 2000;
@@ -57,21 +66,21 @@ void run(benchmark::State& state, const std::string& method, skyview::HorizonPar
 }
 
 void BM_Sampled16x16(benchmark::State& s) {
-  skyview::HorizonParams p;
+  skyview::HorizonParams p = as_skyview_runs();
   run(s, "sampled", p);
 }
 void BM_Sampled16x16NoEarlyExit(benchmark::State& s) {
-  skyview::HorizonParams p;
+  skyview::HorizonParams p = as_skyview_runs();
   p.early_exit = false;
   run(s, "sampled", p);
 }
 void BM_March16R100(benchmark::State& s) {
-  skyview::HorizonParams p;
+  skyview::HorizonParams p = as_skyview_runs();
   p.radius = 100;
   run(s, "march", p);
 }
 void BM_March16R100NoEarlyExit(benchmark::State& s) {
-  skyview::HorizonParams p;
+  skyview::HorizonParams p = as_skyview_runs();
   p.radius = 100;
   p.early_exit = false;
   run(s, "march", p);
@@ -81,7 +90,7 @@ void BM_March16R100NoEarlyExit(benchmark::State& s) {
 // (--far-lines; 1 is the default). Of sixteen directions on this local grid, eight run along its
 // axes and diagonals, where the sweep pushes each cell onto its own line (no near field, no query).
 void BM_Sweep16(benchmark::State& s) {
-  skyview::HorizonParams p;
+  skyview::HorizonParams p = as_skyview_runs();
   p.samples = static_cast<int>(s.range(0));
   p.far_lines = static_cast<int>(s.range(1));
   run(s, "sweep", p);
@@ -89,7 +98,7 @@ void BM_Sweep16(benchmark::State& s) {
 // Fifteen directions: only north runs along the grid, so nearly every direction takes the general
 // path (near field and hull queries) that sixteen share with the axes' and diagonals' exact push.
 void BM_Sweep15(benchmark::State& s) {
-  skyview::HorizonParams p;
+  skyview::HorizonParams p = as_skyview_runs();
   p.directions = 15;
   p.samples = static_cast<int>(s.range(0));
   p.far_lines = static_cast<int>(s.range(1));
@@ -101,9 +110,8 @@ void BM_Sweep15(benchmark::State& s) {
 // The sink only touches each plane; the products are BM_SvfStreamed16's.
 void run_streamed(benchmark::State& state, int directions) {
   const skyview::Terrain& t = city(bench_size());
-  skyview::HorizonParams p;
+  skyview::HorizonParams p = as_skyview_runs();
   p.directions = directions;
-  p.azimuth_origin = skyview::AzimuthOrigin::grid;  // skyview svf's default (the library's is true north)
   p.samples = static_cast<int>(state.range(0));
   p.far_lines = static_cast<int>(state.range(1));
   auto engine = skyview::make_horizon_engine("sweep", p);
@@ -124,7 +132,7 @@ void BM_Sweep16Streamed(benchmark::State& state) { run_streamed(state, 16); }
 // (of 15, only the first runs along the grid).
 void BM_Sweep15Streamed(benchmark::State& state) { run_streamed(state, 15); }
 void BM_Sweep16WithLower(benchmark::State& s) {
-  skyview::HorizonParams p;
+  skyview::HorizonParams p = as_skyview_runs();
   p.lower = true;
   run(s, "sweep", p);
 }
@@ -134,7 +142,7 @@ void BM_Sweep16WithLower(benchmark::State& s) {
 template <class Products>
 void run_svf(benchmark::State& state, Products&& products) {
   const skyview::Terrain& t = city(bench_size());
-  skyview::HorizonParams p;
+  skyview::HorizonParams p = as_skyview_runs();
   p.lower = true;
   const auto engine = skyview::make_horizon_engine("sweep", p);
   for (auto _ : state) {

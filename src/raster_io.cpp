@@ -668,8 +668,10 @@ void write_terrain(const std::string& path, const Terrain& t, const WriteOptions
 
 void write_png(const std::string& path, int width, int height, int channels, const std::uint8_t* pixels,
                bool overwrite) {
-  if (channels < 1 || channels > 4 || width < 1 || height < 1)
-    throw Error("cannot write the picture '" + path + "': no pixels (internal error)");
+  if (channels < 1 || channels > 4 || width < 1 || height < 1) {
+    throw Error("cannot write the picture '" + path + "': " + std::to_string(width) + " x " + std::to_string(height) +
+                " pixels of " + std::to_string(channels) + " channels (internal error)");
+  }
   init_gdal();
   DatasetPtr ds = make_memory_dataset(width, height, channels, GDT_Byte);
   // Interleaved samples: pixel spacing `channels`, line spacing a row of them, band spacing 1.

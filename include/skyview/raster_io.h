@@ -94,7 +94,7 @@ void write_bands(const std::string& path, int width, int height, const GeoRefere
 // Writes absolute heights (base + relative) as one float32 band named "height" in metres.
 void write_terrain(const std::string& path, const Terrain& terrain, const WriteOptions& options);
 
-// Writes an 8-bit PNG of `channels` (1 grey, 3 RGB, 4 RGBA) interleaved samples per pixel, rows
+// Writes an 8-bit PNG of `channels` (1 grey, 2 grey and alpha, 3 RGB, 4 RGBA) interleaved samples per pixel, rows
 // top to bottom, through GDAL's PNG driver, under a temporary name renamed into place. Throws
 // skyview::Error if `path` exists and !overwrite, or if writing fails.
 void write_png(const std::string& path, int width, int height, int channels, const std::uint8_t* pixels,

@@ -5,9 +5,10 @@
 
 namespace skyview::pcl_entry {
 
-std::string read_cloud(const std::string& path, bool ply, std::vector<LasPoint>& points);
-std::string statistical_inliers(const std::vector<XyzPoint>& points, int k, double sigma, std::vector<char>& keep);
+std::string read_cloud(const std::string& path, bool ply, std::vector<LasPoint>& points) noexcept;
+std::string statistical_inliers(const std::vector<XyzPoint>& points, int k, double sigma,
+                                std::vector<char>& keep) noexcept;
 std::string morphological_ground(const std::vector<XyzPoint>& points, const GroundFilterParams& params,
-                                 std::vector<char>& ground);
+                                 std::vector<char>& ground) noexcept;
 
 }  // namespace skyview::pcl_entry

@@ -37,7 +37,7 @@ std::vector<char> mask_of(const pcl::Indices& kept, std::size_t n) {
 
 // Runs `filter`, turning whatever it throws into the one-line error the entry points return.
 template <class Filter>
-std::string guarded(const char* what, Filter&& filter) {
+std::string guarded(const char* what, Filter&& filter) noexcept {
   try {
     filter();
     return {};
@@ -45,12 +45,15 @@ std::string guarded(const char* what, Filter&& filter) {
     return std::string(what) + ": out of memory";
   } catch (const std::exception& e) {
     return std::string(what) + " failed: " + e.what();
+  } catch (...) {
+    return std::string(what) + " failed";
   }
 }
 
 }  // namespace
 
-std::string statistical_inliers(const std::vector<XyzPoint>& points, int k, double sigma, std::vector<char>& keep) {
+std::string statistical_inliers(const std::vector<XyzPoint>& points, int k, double sigma,
+                                std::vector<char>& keep) noexcept {
   return guarded("the outlier filter", [&] {
     pcl::StatisticalOutlierRemoval<pcl::PointXYZ> sor;
     sor.setInputCloud(to_pcl(points));
@@ -63,7 +66,7 @@ std::string statistical_inliers(const std::vector<XyzPoint>& points, int k, doub
 }
 
 std::string morphological_ground(const std::vector<XyzPoint>& points, const GroundFilterParams& p,
-                                 std::vector<char>& ground) {
+                                 std::vector<char>& ground) noexcept {
   return guarded("the ground filter", [&] {
     pcl::ApproximateProgressiveMorphologicalFilter<pcl::PointXYZ> pmf;
     pmf.setInputCloud(to_pcl(points));

@@ -2,8 +2,8 @@
 #include "entry_points.h"
 
 extern "C" __attribute__((visibility("default"))) const skyview::detail::PclModule* skyview_pcl_module() {
-  static const skyview::detail::PclModule table{
-      skyview::detail::PclModule::kAbiVersion, &skyview::pcl_entry::read_cloud,
-      &skyview::pcl_entry::statistical_inliers, &skyview::pcl_entry::morphological_ground};
+  static const skyview::detail::PclModule table{skyview::detail::PclModuleBuild{}, &skyview::pcl_entry::read_cloud,
+                                                &skyview::pcl_entry::statistical_inliers,
+                                                &skyview::pcl_entry::morphological_ground};
   return &table;
 }

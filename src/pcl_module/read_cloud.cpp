@@ -89,13 +89,16 @@ std::string read(const std::string& path, bool ply, std::vector<LasPoint>& point
 
 }  // namespace
 
-std::string read_cloud(const std::string& path, bool ply, std::vector<LasPoint>& points) {
+std::string read_cloud(const std::string& path, bool ply, std::vector<LasPoint>& points) noexcept {
+  auto unreadable = [&] { return "'" + path + "' is not a readable " + (ply ? "PLY" : "PCD") + " point cloud"; };
   try {
     return read(path, ply, points);
   } catch (const std::bad_alloc&) {
     return "'" + path + "' does not fit in memory";
   } catch (const std::exception& e) {
-    return "'" + path + "' is not a readable " + (ply ? "PLY" : "PCD") + " point cloud (" + e.what() + ")";
+    return unreadable() + " (" + e.what() + ")";
+  } catch (...) {
+    return unreadable();
   }
 }
 

@@ -1,5 +1,6 @@
 // PLY and PCD clouds, read by the PCL module (pcl_module.h) into memory: PCL loads a whole file
-// anyway, so the points are handed over at once and then served in chunks.
+// anyway, so the points are handed over at once (32 bytes each) and then served in chunks.
+#include <algorithm>
 #include <filesystem>
 
 #include "pcl_module.h"
@@ -22,6 +23,7 @@ class PclCloud final : public PointCloud {
 
   void read_points(const std::function<void(const std::vector<LasPoint>&)>& chunk,
                    std::size_t chunk_points) const override {
+    chunk_points = std::max<std::size_t>(1, chunk_points);  // as the LAS and text readers take 0
     std::vector<LasPoint> points;
     for (std::size_t i = 0; i < points_.size(); i += chunk_points) {
       points.assign(points_.begin() + static_cast<std::ptrdiff_t>(i),

@@ -12,11 +12,14 @@ namespace skyview::detail {
 namespace {
 
 constexpr const char* kModuleFile = "libskyview_pcl.so";
+constexpr const char* kNeeds = "point clouds in PLY or PCD and the point filters need skyview's PCL module";
 
-// Folders to look in, in order (see pcl_module.h).
-std::vector<std::filesystem::path> module_folders() {
+// Folders to look in, in order (see pcl_module.h); `chosen` when the user named the one folder.
+std::vector<std::filesystem::path> module_folders(bool& chosen) {
   std::vector<std::filesystem::path> folders;
-  if (const char* dir = std::getenv("SKYVIEW_MODULE_DIR"); dir && *dir) {
+  const char* dir = std::getenv("SKYVIEW_MODULE_DIR");
+  chosen = dir && *dir;
+  if (chosen) {
     folders.emplace_back(dir);
     return folders;  // asked for: no other folder may stand in for it
   }
@@ -32,9 +35,12 @@ std::vector<std::filesystem::path> module_folders() {
   return folders;
 }
 
+// The module in the first folder that holds one; a file there that does not load, or comes from
+// another build, is an error, not a reason to look further (it would hide a broken install).
 const PclModule* load() {
-  std::string tried, why;
-  for (const std::filesystem::path& folder : module_folders()) {
+  bool chosen = false;
+  std::string tried;
+  for (const std::filesystem::path& folder : module_folders(chosen)) {
     const std::filesystem::path file = folder / kModuleFile;
     tried += (tried.empty() ? "" : ", ") + folder.string();
     std::error_code ec;
@@ -42,20 +48,17 @@ const PclModule* load() {
     void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!handle) {
       const char* e = dlerror();
-      why = std::string(": ") + (e ? e : "cannot load it");
-      break;
+      throw Error(std::string(kNeeds) + ": " + file.string() + " does not load (" + (e ? e : "no reason given") + ")");
     }
     using Entry = const PclModule* (*)();
     const auto entry = reinterpret_cast<Entry>(dlsym(handle, "skyview_pcl_module"));
     const PclModule* module = entry ? entry() : nullptr;
-    if (module && module->abi_version == PclModule::kAbiVersion) return module;  // kept loaded for the process
+    if (module && module->build == PclModuleBuild{}) return module;  // kept loaded for the process
     dlclose(handle);
-    why = ": " + file.string() + " is from another version of skyview";
-    break;
+    throw Error(std::string(kNeeds) + ": " + file.string() + " is from another build of skyview");
   }
-  if (why.empty()) why = ": no " + std::string(kModuleFile) + " in " + tried;
-  throw Error("point clouds in PLY or PCD and the point filters need skyview's PCL module" + why +
-              " (set SKYVIEW_MODULE_DIR to the folder that holds it)");
+  throw Error(std::string(kNeeds) + ": no " + kModuleFile + " in " + tried +
+              (chosen ? " (SKYVIEW_MODULE_DIR names it)" : " (set SKYVIEW_MODULE_DIR to the folder that holds it)"));
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 // Exposure-map preview: two colour-mapped panels with scale bars, drawn with OpenCV and encoded by
-// GDAL's PNG driver (OpenCV's image codecs would bring about 20 more shared libraries to every run's
+// GDAL's PNG driver (OpenCV's image codecs would bring 15 more shared libraries to every run's
 // start).
 #include "skyview/exposure_preview.h"
 

@@ -19,12 +19,13 @@ struct RunResult {
   std::string err;
 };
 
-// Runs the executable with `args` and -q, stderr into `dir`; with `max_file_bytes` > 0 no file it
-// writes may grow beyond that (RLIMIT_FSIZE with SIGXFSZ ignored, so a write fails with EFBIG the
+// Runs the executable `exe` with `args` and -q, stderr into `dir`; with `max_file_bytes` > 0 no file
+// it writes may grow beyond that (RLIMIT_FSIZE with SIGXFSZ ignored, so a write fails with EFBIG the
 // way a full disk fails it).
-inline RunResult run_skyview(const std::string& args, const std::string& dir, rlim_t max_file_bytes = 0) {
+inline RunResult run_executable(const std::string& exe, const std::string& args, const std::string& dir,
+                                rlim_t max_file_bytes = 0) {
   const std::string err_file = dir + "/stderr.txt";
-  const std::string cmd = std::string(SKYVIEW_EXE) + " " + args + " -q 2>" + err_file + " >/dev/null";
+  const std::string cmd = exe + " " + args + " -q 2>" + err_file + " >/dev/null";
   const pid_t pid = fork();
   if (pid == 0) {
     if (max_file_bytes > 0) {
@@ -40,6 +41,11 @@ inline RunResult run_skyview(const std::string& args, const std::string& dir, rl
   std::ifstream in(err_file);
   std::string all((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), all};
+}
+
+// The same for the skyview executable this build made.
+inline RunResult run_skyview(const std::string& args, const std::string& dir, rlim_t max_file_bytes = 0) {
+  return run_executable(SKYVIEW_EXE, args, dir, max_file_bytes);
 }
 
 // Exit 1 for bad data or files, 2 for a bad command line.

@@ -199,6 +199,7 @@ TEST(OutputFile, PngKeepsChannelOrderAndRefusesToReplace) {
     rgb[3 * i + 2] = static_cast<std::uint8_t>(250 - i);  // blue
   }
   write_png(path, kW2, kH2, 3, rgb.data(), false);
+  EXPECT_EQ(files_in(scratch.dir), 1u);  // no temporary, no .aux.xml beside it
   {
     std::unique_ptr<GDALDataset> ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
     ASSERT_TRUE(ds);

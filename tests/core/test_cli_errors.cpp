@@ -73,31 +73,64 @@ TEST_F(CliErrors, DsmSaysWhichReturnsWereGround) {
 }
 
 // PCL sits in a module loaded on first use (src/pointcloud/pcl_module.h): a run that needs no PCL
-// works without it; one that does (a PLY cloud, --denoise) gets one line naming what to set, and
-// writes nothing.
+// works without it; one that does (a PLY cloud, --denoise) gets one line saying what is missing,
+// and writes nothing. The module is found beside the executable, or only in SKYVIEW_MODULE_DIR
+// when that is set; a file there that is not a module is reported, not skipped.
 TEST_F(CliErrors, OnlyRunsThatUsePclNeedItsModule) {
   ASSERT_EQ(run_skyview("synth lidar " + dir + "/d.las --size 64", dir).exit_code, 0);
   std::ofstream(dir + "/p.ply") << "ply\nformat ascii 1.0\nelement vertex 2\nproperty double x\nproperty double y\n"
                                    "property double z\nend_header\n500002.5 6400008.5 10\n500000.5 6400009.5 5\n";
-  const std::string none = dir + "/no_modules";
-  std::filesystem::create_directories(none);
-  struct ModuleDir {  // the children inherit it; restored whatever the test's outcome
-    explicit ModuleDir(const std::string& d) { setenv("SKYVIEW_MODULE_DIR", d.c_str(), 1); }
-    ~ModuleDir() { unsetenv("SKYVIEW_MODULE_DIR"); }
+  const std::string ply_run = "dsm " + dir + "/ply.tif --points " + dir + "/p.ply --s_srs EPSG:32633 --overwrite";
+  const std::string denoise_run = "dsm " + dir + "/denoised.tif --points " + dir + "/d.las --denoise --overwrite";
+  const std::filesystem::path build = std::filesystem::path(SKYVIEW_EXE).parent_path();
+  // The executable alone in a folder of its own: its default search finds nothing (unless an
+  // install folder holds a module, which the test then cannot judge).
+  const std::filesystem::path lone = std::filesystem::path(dir) / "bin" / "skyview";
+  std::filesystem::create_directories(lone.parent_path());
+  std::filesystem::copy_file(SKYVIEW_EXE, lone);
+  struct ModuleDir {  // the children inherit it; the caller's own value comes back whatever happens
+    explicit ModuleDir(const char* d) {
+      if (const char* v = std::getenv("SKYVIEW_MODULE_DIR")) old = v, had = true;
+      d ? setenv("SKYVIEW_MODULE_DIR", d, 1) : unsetenv("SKYVIEW_MODULE_DIR");
+    }
+    ~ModuleDir() { had ? setenv("SKYVIEW_MODULE_DIR", old.c_str(), 1) : unsetenv("SKYVIEW_MODULE_DIR"); }
+    std::string old;
+    bool had = false;
   };
   {
-    const ModuleDir env(none);
-    EXPECT_EQ(run_skyview("dsm " + dir + "/las.tif --points " + dir + "/d.las", dir).exit_code, 0);
-    expect_one_line_error(run_skyview("dsm " + dir + "/ply.tif --points " + dir + "/p.ply --s_srs EPSG:32633", dir),
-                          "PCL module: no libskyview_pcl.so in " + none);
-    expect_one_line_error(run_skyview("dsm " + dir + "/denoised.tif --points " + dir + "/d.las --denoise", dir),
-                          "set SKYVIEW_MODULE_DIR");
-    EXPECT_FALSE(std::filesystem::exists(dir + "/ply.tif"));
-    EXPECT_FALSE(std::filesystem::exists(dir + "/denoised.tif"));
+    const ModuleDir env(nullptr);
+    EXPECT_EQ(run_executable(lone.string(), "dsm " + dir + "/las.tif --points " + dir + "/d.las", dir).exit_code, 0);
+    if (!std::filesystem::exists(std::filesystem::path(SKYVIEW_MODULE_INSTALL_DIR) / "libskyview_pcl.so")) {
+      expect_one_line_error(run_executable(lone.string(), ply_run, dir),
+                            "PCL module: no libskyview_pcl.so in " + lone.parent_path().string());
+      expect_one_line_error(run_executable(lone.string(), denoise_run, dir), "set SKYVIEW_MODULE_DIR");
+    }
+    std::filesystem::copy_file(build / "libskyview_pcl.so", lone.parent_path() / "libskyview_pcl.so");
+    EXPECT_EQ(run_executable(lone.string(), ply_run, dir).exit_code, 0);
   }
-  const ModuleDir env(std::filesystem::path(SKYVIEW_EXE).parent_path().string());
-  EXPECT_EQ(run_skyview("dsm " + dir + "/ply.tif --points " + dir + "/p.ply --s_srs EPSG:32633", dir).exit_code, 0);
-  EXPECT_EQ(run_skyview("dsm " + dir + "/denoised.tif --points " + dir + "/d.las --denoise", dir).exit_code, 0);
+  const std::string none = dir + "/no_modules", bad = dir + "/bad_module";
+  std::filesystem::create_directories(none);
+  std::filesystem::create_directories(bad);
+  std::ofstream(bad + "/libskyview_pcl.so") << "not a shared library";
+  std::filesystem::remove(dir + "/ply.tif");
+  {
+    const ModuleDir env(none.c_str());
+    expect_one_line_error(run_skyview(ply_run, dir), "PCL module: no libskyview_pcl.so in " + none + " (");
+    expect_one_line_error(run_skyview(denoise_run, dir), "SKYVIEW_MODULE_DIR names it");
+  }
+  {
+    const ModuleDir env(bad.c_str());
+    expect_one_line_error(run_skyview(denoise_run, dir), bad + "/libskyview_pcl.so does not load");
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir + "/ply.tif"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/denoised.tif"));
+  {
+    const ModuleDir env(nullptr);
+    EXPECT_EQ(run_skyview(ply_run, dir).exit_code, 0);
+    EXPECT_EQ(run_skyview(denoise_run, dir).exit_code, 0);
+  }
+  EXPECT_TRUE(std::filesystem::exists(dir + "/ply.tif"));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/denoised.tif"));
 }
 
 TEST_F(CliErrors, SingleCellRaster) {
