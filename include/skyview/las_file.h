@@ -59,7 +59,9 @@ struct LasWriteOptions {
   int version_minor = 2;  // 2 or 4
   int point_format = 0;   // 0..10
   double scale[3] = {0.001, 0.001, 0.001}, offset[3] = {0, 0, 0};
-  std::string crs_wkt;  // written as an OGC WKT VLR when not empty
+  // Written when not empty: as an OGC WKT VLR with the global encoding's WKT bit in LAS 1.4; in
+  // LAS 1.2 as GeoTIFF keys (when the CRS has an EPSG code) and as WKT.
+  std::string crs_wkt;
 };
 
 // Writes `points` as an uncompressed LAS file (synthetic samples and tests), under a temporary

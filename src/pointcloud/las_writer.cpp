@@ -1,3 +1,5 @@
+#include <ogr_spatialref.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -25,6 +27,53 @@ std::int32_t quantise(double v, double scale, double offset) {
   return static_cast<std::int32_t>(q);
 }
 
+// A VLR of the LAS projection records: its 54-byte header, then `body`.
+std::vector<std::uint8_t> projection_vlr(std::uint16_t record_id, const std::vector<std::uint8_t>& body) {
+  std::vector<std::uint8_t> vlr(54 + body.size(), 0);
+  const std::string user = "LASF_Projection";
+  std::copy(user.begin(), user.end(), vlr.begin() + 2);
+  put<std::uint16_t>(vlr, 18, record_id);
+  put<std::uint16_t>(vlr, 20, static_cast<std::uint16_t>(body.size()));
+  std::copy(body.begin(), body.end(), vlr.begin() + 54);
+  return vlr;
+}
+
+// The GeoKeyDirectoryTag (record 34735) that LAS 1.0-1.3 readers expect for a CRS with an EPSG code:
+// model type (projected or geographic), pixel-is-area, and the code. Empty for a CRS without one,
+// which then travels as WKT only.
+std::vector<std::uint8_t> geokeys_of(const std::string& wkt) {
+  OGRSpatialReference srs;
+  if (srs.importFromWkt(wkt.c_str()) != OGRERR_NONE) return {};
+  const bool projected = srs.IsProjected();
+  if (!projected && !srs.IsGeographic()) return {};
+  const char* key = projected ? "PROJCS" : "GEOGCS";
+  const char* authority = srs.GetAuthorityName(key);
+  const char* code = srs.GetAuthorityCode(key);
+  if (!authority || !code || std::string(authority) != "EPSG") return {};
+  const long epsg = std::strtol(code, nullptr, 10);
+  if (epsg <= 0 || epsg > 65535) return {};
+  // Header (version 1, revision 1.0, three keys), then each key as id, location 0, count 1, value.
+  const std::uint16_t words[] = {1,
+                                 1,
+                                 0,
+                                 3,
+                                 1024,
+                                 0,
+                                 1,
+                                 static_cast<std::uint16_t>(projected ? 1 : 2),
+                                 1025,
+                                 0,
+                                 1,
+                                 1,
+                                 static_cast<std::uint16_t>(projected ? 3072 : 2048),
+                                 0,
+                                 1,
+                                 static_cast<std::uint16_t>(epsg)};
+  std::vector<std::uint8_t> body(sizeof words);
+  std::memcpy(body.data(), words, sizeof words);
+  return body;
+}
+
 }  // namespace
 
 void write_las(const std::string& path, const std::vector<LasPoint>& points, const LasWriteOptions& o) {
@@ -33,14 +82,25 @@ void write_las(const std::string& path, const std::vector<LasPoint>& points, con
   if (o.version_minor != 2 && o.version_minor != 4) throw Error("LAS version must be 1.2 or 1.4");
   if (o.point_format > 5 && o.version_minor < 4) throw Error("point formats 6..10 need LAS 1.4");
   const std::uint16_t header_size = o.version_minor == 4 ? 375 : 227;
+  // The CRS as each version's readers look for it: LAS 1.4 as OGC WKT (record 2112) with the WKT
+  // bit of the global encoding set, as point formats 6-10 require; LAS 1.2 as GeoTIFF keys where
+  // the CRS has an EPSG code, and as WKT too (which readers that know it prefer).
   std::vector<std::uint8_t> vlr;
+  int vlrs = 0;
   if (!o.crs_wkt.empty()) {
-    vlr.assign(54 + o.crs_wkt.size() + 1, 0);
-    const std::string user = "LASF_Projection";
-    std::copy(user.begin(), user.end(), vlr.begin() + 2);
-    put<std::uint16_t>(vlr, 18, 2112);
-    put<std::uint16_t>(vlr, 20, static_cast<std::uint16_t>(o.crs_wkt.size() + 1));
-    std::copy(o.crs_wkt.begin(), o.crs_wkt.end(), vlr.begin() + 54);
+    if (o.crs_wkt.size() + 1 > 0xFFFF) throw Error("the CRS's WKT is too long for a LAS record");
+    if (o.version_minor < 4) {
+      if (const std::vector<std::uint8_t> keys = geokeys_of(o.crs_wkt); !keys.empty()) {
+        const std::vector<std::uint8_t> r = projection_vlr(34735, keys);
+        vlr.insert(vlr.end(), r.begin(), r.end());
+        ++vlrs;
+      }
+    }
+    std::vector<std::uint8_t> text(o.crs_wkt.begin(), o.crs_wkt.end());
+    text.push_back(0);
+    const std::vector<std::uint8_t> r = projection_vlr(2112, text);
+    vlr.insert(vlr.end(), r.begin(), r.end());
+    ++vlrs;
   }
   std::vector<std::uint8_t> h(header_size, 0);
   const std::string signature = "LASF", system = "skyview", software = "skyview write_las";
@@ -51,7 +111,8 @@ void write_las(const std::string& path, const std::vector<LasPoint>& points, con
   std::copy(software.begin(), software.end(), h.begin() + 58);
   put<std::uint16_t>(h, 94, header_size);
   put<std::uint32_t>(h, 96, static_cast<std::uint32_t>(header_size + vlr.size()));
-  put<std::uint32_t>(h, 100, vlr.empty() ? 0 : 1);
+  put<std::uint32_t>(h, 100, static_cast<std::uint32_t>(vlrs));
+  if (o.version_minor == 4 && vlrs > 0) put<std::uint16_t>(h, 6, 1u << 4);  // global encoding: WKT
   h[104] = static_cast<std::uint8_t>(o.point_format);
   put<std::uint16_t>(h, 105, static_cast<std::uint16_t>(base));
   const bool legacy_ok = o.point_format <= 5 && points.size() <= 0xFFFFFFFFu;

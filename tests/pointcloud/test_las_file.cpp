@@ -2,10 +2,15 @@
 // point format, and against truncated and corrupt input.
 #include <gtest/gtest.h>
 
+#include <ogr_spatialref.h>
+
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
+#include "core/test_support.h"
 #include "skyview/error.h"
 #include "skyview/las_file.h"
 #include "temp_dir.h"
@@ -125,6 +130,68 @@ TEST(LasFile, EveryPointFormatAndVersionRoundTrips) {
         ASSERT_EQ(back[i].number_of_returns, pts[i].number_of_returns) << format;
         ASSERT_EQ(back[i].intensity, pts[i].intensity) << format;
       }
+    }
+  }
+}
+
+// The CRS as each version's readers look for it: LAS 1.2 as GeoTIFF keys (ProjectedCSTypeGeoKey)
+// and WKT; LAS 1.4 as WKT only, with the global encoding's WKT bit. A CRS without an EPSG code
+// travels as WKT alone. Every file reads back as the CRS written.
+TEST(LasFile, CrsIsWrittenAsEachVersionsReadersExpectIt) {
+  const std::filesystem::path dir = skyview::test::temp_dir("las");
+  struct Written {
+    std::uint16_t global_encoding = 0;
+    std::map<int, std::vector<std::uint8_t>> records;  // projection VLRs by record id
+  };
+  auto written = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    const std::string b((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    auto u16 = [&](std::size_t at) { return static_cast<int>(std::uint8_t(b[at]) | std::uint8_t(b[at + 1]) << 8); };
+    auto u32 = [&](std::size_t at) {
+      return static_cast<std::size_t>(u16(at)) | static_cast<std::size_t>(u16(at + 2)) << 16;
+    };
+    Written w;
+    w.global_encoding = static_cast<std::uint16_t>(u16(6));
+    std::size_t at = static_cast<std::size_t>(u16(94));
+    for (std::size_t v = 0; v < u32(100); ++v) {
+      const std::size_t length = static_cast<std::size_t>(u16(at + 20));
+      EXPECT_EQ(b.substr(at + 2, 15), "LASF_Projection");
+      w.records[u16(at + 18)].assign(b.begin() + static_cast<std::ptrdiff_t>(at + 54),
+                                     b.begin() + static_cast<std::ptrdiff_t>(at + 54 + length));
+      at += 54 + length;
+    }
+    EXPECT_EQ(at, u32(96)) << "the points start after the records";
+    return w;
+  };
+  auto same_crs = [](const std::string& a, const std::string& b) {
+    OGRSpatialReference x, y;
+    return x.importFromWkt(a.c_str()) == OGRERR_NONE && y.importFromWkt(b.c_str()) == OGRERR_NONE && x.IsSame(&y);
+  };
+  const std::string utm = skyview::test::wkt_of("EPSG:32633");
+  const std::string custom =
+      skyview::test::wkt_of("+proj=tmerc +lon_0=14.5 +k=0.9999 +x_0=400000 +ellps=GRS80 +units=m");
+  for (const auto& [crs, epsg] : {std::pair{utm, 32633}, std::pair{custom, 0}}) {
+    for (int minor : {2, 4}) {
+      LasWriteOptions o;
+      o.version_minor = minor;
+      o.offset[0] = 500000, o.offset[1] = 6400000;
+      o.crs_wkt = crs;
+      const std::string path = (dir / ("crs" + std::to_string(epsg) + "v" + std::to_string(minor) + ".las")).string();
+      write_las(path, synthetic_points(), o);
+      const Written w = written(path);
+      EXPECT_EQ(w.global_encoding & 0x10, minor == 4 ? 0x10 : 0) << path;
+      ASSERT_EQ(w.records.count(2112), 1u) << path;
+      EXPECT_TRUE(same_crs(reinterpret_cast<const char*>(w.records.at(2112).data()), crs)) << path;
+      const bool keys = minor == 2 && epsg > 0;
+      ASSERT_EQ(w.records.count(34735), keys ? 1u : 0u) << path;
+      if (keys) {
+        // Header {1, 1, 0, 3}, then {1024, 0, 1, 1} (projected), {1025, 0, 1, 1} (area) and the code.
+        const std::vector<std::uint16_t> expected = {1, 1, 0, 3, 1024, 0, 1, 1, 1025, 0, 1, 1, 3072, 0, 1, 32633};
+        std::vector<std::uint16_t> got(w.records.at(34735).size() / 2);
+        std::memcpy(got.data(), w.records.at(34735).data(), got.size() * 2);
+        EXPECT_EQ(got, expected);
+      }
+      EXPECT_TRUE(same_crs(LasReader::open_file(path).header().crs_wkt, crs)) << path;
     }
   }
 }
