@@ -59,8 +59,9 @@ struct LasWriteOptions {
   int version_minor = 2;  // 2 or 4
   int point_format = 0;   // 0..10
   double scale[3] = {0.001, 0.001, 0.001}, offset[3] = {0, 0, 0};
-  // Written when not empty: as an OGC WKT VLR with the global encoding's WKT bit in LAS 1.4; in
-  // LAS 1.2 as GeoTIFF keys (when the CRS has an EPSG code) and as WKT.
+  // Written when not empty (and refused unless GDAL reads it as WKT): as an OGC WKT VLR with the
+  // global encoding's WKT bit in LAS 1.4; in LAS 1.2 as GeoTIFF keys (when the CRS has an EPSG code
+  // below 32767) and as WKT.
   std::string crs_wkt;
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -27,50 +28,68 @@ std::int32_t quantise(double v, double scale, double offset) {
   return static_cast<std::int32_t>(q);
 }
 
-// A VLR of the LAS projection records: its 54-byte header, then `body`.
-std::vector<std::uint8_t> projection_vlr(std::uint16_t record_id, const std::vector<std::uint8_t>& body) {
+// A VLR of the LAS projection records: its 54-byte header (with `description`), then `body`.
+std::vector<std::uint8_t> projection_vlr(std::uint16_t record_id, const std::string& description,
+                                         const std::vector<std::uint8_t>& body) {
   std::vector<std::uint8_t> vlr(54 + body.size(), 0);
   const std::string user = "LASF_Projection";
   std::copy(user.begin(), user.end(), vlr.begin() + 2);
   put<std::uint16_t>(vlr, 18, record_id);
   put<std::uint16_t>(vlr, 20, static_cast<std::uint16_t>(body.size()));
+  std::copy_n(description.begin(), std::min<std::size_t>(description.size(), 31), vlr.begin() + 22);
   std::copy(body.begin(), body.end(), vlr.begin() + 54);
   return vlr;
 }
 
+// The CRS's EPSG code as GeoTIFF can hold it (1 to 32766; above are user-defined and private
+// codes), from its authority or, failing that, from GDAL's matching; 0 if none.
+int epsg_code(OGRSpatialReference& srs, bool projected) {
+  const char* key = projected ? "PROJCS" : "GEOGCS";
+  auto code = [&]() -> long {
+    const char* authority = srs.GetAuthorityName(key);
+    const char* c = srs.GetAuthorityCode(key);
+    return authority && c && std::string(authority) == "EPSG" ? std::strtol(c, nullptr, 10) : 0;
+  };
+  long epsg = code();
+  if (epsg <= 0) {
+    // The one EPSG CRS GDAL judges equivalent, if exactly one is (confidence 70 and up: the same
+    // definition, whatever the names; a proj string's CRS has none).
+    int n = 0;
+    int* confidence = nullptr;
+    OGRSpatialReferenceH* matches = srs.FindMatches(nullptr, &n, &confidence);
+    int sure = 0;
+    for (int m = 0; m < n; ++m) {
+      const auto* match = OGRSpatialReference::FromHandle(matches[m]);
+      const char* authority = match->GetAuthorityName(nullptr);
+      const char* c = match->GetAuthorityCode(nullptr);
+      if (confidence[m] >= 70 && authority && c && std::string(authority) == "EPSG")
+        ++sure, epsg = std::strtol(c, nullptr, 10);
+    }
+    OSRFreeSRSArray(matches);
+    CPLFree(confidence);
+    if (sure != 1) epsg = 0;
+  }
+  return epsg > 0 && epsg < 32767 ? static_cast<int>(epsg) : 0;
+}
+
 // The GeoKeyDirectoryTag (record 34735) that LAS 1.0-1.3 readers expect for a CRS with an EPSG code:
-// model type (projected or geographic), pixel-is-area, and the code. Empty for a CRS without one,
-// which then travels as WKT only.
-std::vector<std::uint8_t> geokeys_of(const std::string& wkt) {
-  OGRSpatialReference srs;
-  if (srs.importFromWkt(wkt.c_str()) != OGRERR_NONE) return {};
+// model type (projected or geographic), pixel-is-area, and the code (of the horizontal part: the
+// vertical part of a compound CRS is left to the WKT). Empty for a CRS without a code, which then
+// travels as WKT only.
+std::vector<std::uint8_t> geokeys_of(OGRSpatialReference& srs) {
   const bool projected = srs.IsProjected();
   if (!projected && !srs.IsGeographic()) return {};
-  const char* key = projected ? "PROJCS" : "GEOGCS";
-  const char* authority = srs.GetAuthorityName(key);
-  const char* code = srs.GetAuthorityCode(key);
-  if (!authority || !code || std::string(authority) != "EPSG") return {};
-  const long epsg = std::strtol(code, nullptr, 10);
-  if (epsg <= 0 || epsg > 65535) return {};
-  // Header (version 1, revision 1.0, three keys), then each key as id, location 0, count 1, value.
-  const std::uint16_t words[] = {1,
-                                 1,
-                                 0,
-                                 3,
-                                 1024,
-                                 0,
-                                 1,
-                                 static_cast<std::uint16_t>(projected ? 1 : 2),
-                                 1025,
-                                 0,
-                                 1,
-                                 1,
-                                 static_cast<std::uint16_t>(projected ? 3072 : 2048),
-                                 0,
-                                 1,
-                                 static_cast<std::uint16_t>(epsg)};
-  std::vector<std::uint8_t> body(sizeof words);
-  std::memcpy(body.data(), words, sizeof words);
+  const int epsg = epsg_code(srs, projected);
+  if (epsg == 0) return {};
+  struct Key {
+    std::uint16_t id, location, count, value;
+  };
+  const Key keys[] = {{1, 1, 0, 3},                                    // directory version 1, revision 1.0, three keys
+                      {1024, 0, 1, std::uint16_t(projected ? 1 : 2)},  // GTModelTypeGeoKey: projected or geographic
+                      {1025, 0, 1, 1},                                 // GTRasterTypeGeoKey: pixel is area
+                      {std::uint16_t(projected ? 3072 : 2048), 0, 1, std::uint16_t(epsg)}};  // the CRS's code
+  std::vector<std::uint8_t> body(sizeof keys);
+  std::memcpy(body.data(), keys, sizeof keys);
   return body;
 }
 
@@ -82,25 +101,27 @@ void write_las(const std::string& path, const std::vector<LasPoint>& points, con
   if (o.version_minor != 2 && o.version_minor != 4) throw Error("LAS version must be 1.2 or 1.4");
   if (o.point_format > 5 && o.version_minor < 4) throw Error("point formats 6..10 need LAS 1.4");
   const std::uint16_t header_size = o.version_minor == 4 ? 375 : 227;
-  // The CRS as each version's readers look for it: LAS 1.4 as OGC WKT (record 2112) with the WKT
-  // bit of the global encoding set, as point formats 6-10 require; LAS 1.2 as GeoTIFF keys where
-  // the CRS has an EPSG code, and as WKT too (which readers that know it prefer).
+  // The CRS: in LAS 1.2 as GeoTIFF keys, which 1.2 readers expect, where the CRS has an EPSG code,
+  // and as WKT too (which readers that know it prefer); in LAS 1.4 as OGC WKT only (record 2112,
+  // with the global encoding's WKT bit), which point formats 6-10 require and 0-5 allow (a choice:
+  // R15 suggests GeoTIFF keys there for readers older than 1.4).
   std::vector<std::uint8_t> vlr;
   int vlrs = 0;
+  auto add_vlr = [&](const std::vector<std::uint8_t>& record) {
+    vlr.insert(vlr.end(), record.begin(), record.end());
+    ++vlrs;
+  };
   if (!o.crs_wkt.empty()) {
+    OGRSpatialReference srs;
+    if (srs.importFromWkt(o.crs_wkt.c_str()) != OGRERR_NONE) throw Error("the CRS to write is not valid WKT");
     if (o.crs_wkt.size() + 1 > 0xFFFF) throw Error("the CRS's WKT is too long for a LAS record");
     if (o.version_minor < 4) {
-      if (const std::vector<std::uint8_t> keys = geokeys_of(o.crs_wkt); !keys.empty()) {
-        const std::vector<std::uint8_t> r = projection_vlr(34735, keys);
-        vlr.insert(vlr.end(), r.begin(), r.end());
-        ++vlrs;
-      }
+      if (const std::vector<std::uint8_t> keys = geokeys_of(srs); !keys.empty())
+        add_vlr(projection_vlr(34735, "GeoTIFF GeoKeyDirectoryTag", keys));
     }
     std::vector<std::uint8_t> text(o.crs_wkt.begin(), o.crs_wkt.end());
     text.push_back(0);
-    const std::vector<std::uint8_t> r = projection_vlr(2112, text);
-    vlr.insert(vlr.end(), r.begin(), r.end());
-    ++vlrs;
+    add_vlr(projection_vlr(2112, "OGC WKT coordinate system", text));
   }
   std::vector<std::uint8_t> h(header_size, 0);
   const std::string signature = "LASF", system = "skyview", software = "skyview write_las";
@@ -112,7 +133,8 @@ void write_las(const std::string& path, const std::vector<LasPoint>& points, con
   put<std::uint16_t>(h, 94, header_size);
   put<std::uint32_t>(h, 96, static_cast<std::uint32_t>(header_size + vlr.size()));
   put<std::uint32_t>(h, 100, static_cast<std::uint32_t>(vlrs));
-  if (o.version_minor == 4 && vlrs > 0) put<std::uint16_t>(h, 6, 1u << 4);  // global encoding: WKT
+  // Global encoding's WKT bit: the CRS is WKT (point formats 6-10 must use it, with or without one).
+  if (o.version_minor == 4 && (vlrs > 0 || o.point_format >= 6)) put<std::uint16_t>(h, 6, 1u << 4);
   h[104] = static_cast<std::uint8_t>(o.point_format);
   put<std::uint16_t>(h, 105, static_cast<std::uint16_t>(base));
   const bool legacy_ok = o.point_format <= 5 && points.size() <= 0xFFFFFFFFu;

@@ -134,64 +134,117 @@ TEST(LasFile, EveryPointFormatAndVersionRoundTrips) {
   }
 }
 
-// The CRS as each version's readers look for it: LAS 1.2 as GeoTIFF keys (ProjectedCSTypeGeoKey)
-// and WKT; LAS 1.4 as WKT only, with the global encoding's WKT bit. A CRS without an EPSG code
-// travels as WKT alone. Every file reads back as the CRS written.
+// The CRS as each version's readers look for it: LAS 1.2 as GeoTIFF keys (the model type and the
+// projected or geographic code) and WKT; LAS 1.4 as WKT only, with the global encoding's WKT bit. A
+// CRS given without its code gets the one GDAL identifies; one that has none travels as WKT alone.
+// Every file reads back as the CRS written, and a LAS 1.2 file reads back from its keys alone.
 TEST(LasFile, CrsIsWrittenAsEachVersionsReadersExpectIt) {
   const std::filesystem::path dir = skyview::test::temp_dir("las");
-  struct Written {
-    std::uint16_t global_encoding = 0;
-    std::map<int, std::vector<std::uint8_t>> records;  // projection VLRs by record id
+  struct Record {
+    int id;
+    std::size_t at;  // of the record's header in the file
+    std::vector<std::uint8_t> body;
   };
-  auto written = [](const std::string& path) {
+  struct Written {
+    std::string bytes;
+    std::uint16_t global_encoding = 0;
+    std::vector<Record> records;
+    const Record* find(int id) const {
+      for (const Record& r : records) {
+        if (r.id == id) return &r;
+      }
+      return nullptr;
+    }
+  };
+  auto u16 = [](const std::string& b, std::size_t at) {
+    return static_cast<int>(std::uint8_t(b[at]) | std::uint8_t(b[at + 1]) << 8);
+  };
+  auto u32 = [&](const std::string& b, std::size_t at) {
+    return static_cast<std::size_t>(u16(b, at)) | static_cast<std::size_t>(u16(b, at + 2)) << 16;
+  };
+  auto written = [&](const std::string& path) {
     std::ifstream in(path, std::ios::binary);
-    const std::string b((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    auto u16 = [&](std::size_t at) { return static_cast<int>(std::uint8_t(b[at]) | std::uint8_t(b[at + 1]) << 8); };
-    auto u32 = [&](std::size_t at) {
-      return static_cast<std::size_t>(u16(at)) | static_cast<std::size_t>(u16(at + 2)) << 16;
-    };
     Written w;
-    w.global_encoding = static_cast<std::uint16_t>(u16(6));
-    std::size_t at = static_cast<std::size_t>(u16(94));
-    for (std::size_t v = 0; v < u32(100); ++v) {
-      const std::size_t length = static_cast<std::size_t>(u16(at + 20));
-      EXPECT_EQ(b.substr(at + 2, 15), "LASF_Projection");
-      w.records[u16(at + 18)].assign(b.begin() + static_cast<std::ptrdiff_t>(at + 54),
-                                     b.begin() + static_cast<std::ptrdiff_t>(at + 54 + length));
+    w.bytes.assign((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string& b = w.bytes;
+    w.global_encoding = static_cast<std::uint16_t>(u16(b, 6));
+    std::size_t at = static_cast<std::size_t>(u16(b, 94));
+    for (std::size_t v = 0; v < u32(b, 100); ++v) {
+      const std::size_t length = static_cast<std::size_t>(u16(b, at + 20));
+      EXPECT_EQ(b.substr(at, 18), std::string("\0\0LASF_Projection\0", 18));
+      w.records.push_back({u16(b, at + 18),
+                           at,
+                           {b.begin() + static_cast<std::ptrdiff_t>(at + 54),
+                            b.begin() + static_cast<std::ptrdiff_t>(at + 54 + length)}});
       at += 54 + length;
     }
-    EXPECT_EQ(at, u32(96)) << "the points start after the records";
+    EXPECT_EQ(at, u32(b, 96)) << "the points start after the records";
     return w;
   };
   auto same_crs = [](const std::string& a, const std::string& b) {
     OGRSpatialReference x, y;
     return x.importFromWkt(a.c_str()) == OGRERR_NONE && y.importFromWkt(b.c_str()) == OGRERR_NONE && x.IsSame(&y);
   };
-  const std::string utm = skyview::test::wkt_of("EPSG:32633");
-  const std::string custom =
-      skyview::test::wkt_of("+proj=tmerc +lon_0=14.5 +k=0.9999 +x_0=400000 +ellps=GRS80 +units=m");
-  for (const auto& [crs, epsg] : {std::pair{utm, 32633}, std::pair{custom, 0}}) {
+  struct Case {
+    const char* name;
+    std::string wkt;
+    int model, key, code;  // expected in the 1.2 keys; code 0: no keys
+  };
+  const Case cases[] = {
+      {"utm", skyview::test::wkt_of("EPSG:32633"), 1, 3072, 32633},
+      {"utm_from_proj", skyview::test::wkt_of("+proj=utm +zone=33 +datum=WGS84 +units=m +no_defs"), 1, 3072, 32633},
+      {"degrees", skyview::test::wkt_of("EPSG:4326"), 2, 2048, 4326},
+      {"custom", skyview::test::wkt_of("+proj=tmerc +lon_0=14.5 +k=0.9999 +x_0=400000 +ellps=GRS80 +units=m"), 0, 0,
+       0}};
+  for (const Case& c : cases) {
     for (int minor : {2, 4}) {
       LasWriteOptions o;
       o.version_minor = minor;
       o.offset[0] = 500000, o.offset[1] = 6400000;
-      o.crs_wkt = crs;
-      const std::string path = (dir / ("crs" + std::to_string(epsg) + "v" + std::to_string(minor) + ".las")).string();
+      o.crs_wkt = c.wkt;
+      const std::string path = (dir / (std::string(c.name) + "_v" + std::to_string(minor) + ".las")).string();
       write_las(path, synthetic_points(), o);
       const Written w = written(path);
       EXPECT_EQ(w.global_encoding & 0x10, minor == 4 ? 0x10 : 0) << path;
-      ASSERT_EQ(w.records.count(2112), 1u) << path;
-      EXPECT_TRUE(same_crs(reinterpret_cast<const char*>(w.records.at(2112).data()), crs)) << path;
-      const bool keys = minor == 2 && epsg > 0;
-      ASSERT_EQ(w.records.count(34735), keys ? 1u : 0u) << path;
-      if (keys) {
-        // Header {1, 1, 0, 3}, then {1024, 0, 1, 1} (projected), {1025, 0, 1, 1} (area) and the code.
-        const std::vector<std::uint16_t> expected = {1, 1, 0, 3, 1024, 0, 1, 1, 1025, 0, 1, 1, 3072, 0, 1, 32633};
-        std::vector<std::uint16_t> got(w.records.at(34735).size() / 2);
-        std::memcpy(got.data(), w.records.at(34735).data(), got.size() * 2);
-        EXPECT_EQ(got, expected);
-      }
-      EXPECT_TRUE(same_crs(LasReader::open_file(path).header().crs_wkt, crs)) << path;
+      const bool keys = minor == 2 && c.code > 0;
+      ASSERT_EQ(w.records.size(), keys ? 2u : 1u) << path;
+      const Record* wkt = w.find(2112);
+      ASSERT_TRUE(wkt) << path;
+      ASSERT_EQ(wkt->body.back(), 0) << "the WKT ends in a NUL";
+      EXPECT_TRUE(same_crs(reinterpret_cast<const char*>(wkt->body.data()), c.wkt)) << path;
+      EXPECT_TRUE(same_crs(LasReader::open_file(path).header().crs_wkt, c.wkt)) << path;
+      if (!keys) continue;
+      const Record* geokeys = w.find(34735);
+      ASSERT_TRUE(geokeys) << path;
+      const std::vector<std::uint16_t> expected = {1,
+                                                   1,
+                                                   0,
+                                                   3,
+                                                   1024,
+                                                   0,
+                                                   1,
+                                                   std::uint16_t(c.model),
+                                                   1025,
+                                                   0,
+                                                   1,
+                                                   1,
+                                                   std::uint16_t(c.key),
+                                                   0,
+                                                   1,
+                                                   std::uint16_t(c.code)};
+      std::vector<std::uint16_t> got(geokeys->body.size() / 2);
+      std::memcpy(got.data(), geokeys->body.data(), got.size() * 2);
+      EXPECT_EQ(got, expected) << path;
+      // The same file without its WKT record: the reader takes the CRS from the keys.
+      std::string keys_only = w.bytes.substr(0, wkt->at) + w.bytes.substr(wkt->at + 54 + wkt->body.size());
+      const std::uint32_t records = 1, points_at = static_cast<std::uint32_t>(u32(w.bytes, 96) - 54 - wkt->body.size());
+      std::memcpy(keys_only.data() + 100, &records, 4);
+      std::memcpy(keys_only.data() + 96, &points_at, 4);
+      const std::string keys_path = (dir / (std::string(c.name) + "_keys_only.las")).string();
+      std::ofstream(keys_path, std::ios::binary) << keys_only;
+      EXPECT_TRUE(same_crs(LasReader::open_file(keys_path).header().crs_wkt,
+                           skyview::test::wkt_of(("EPSG:" + std::to_string(c.code)).c_str())))
+          << keys_path;
     }
   }
 }
