@@ -263,6 +263,44 @@ void run_hull_floor(benchmark::State& state) {
 void BM_HullFloorPushTangent(benchmark::State& s) { run_hull_floor<false>(s); }
 void BM_HullFloorDelayedQueries(benchmark::State& s) { run_hull_floor<true>(s); }
 
+// A design the sweep does not have, for the oblique directions: a direction of slope 1/2 (26.57
+// degrees from an axis, not 22.5) with lines half a cell apart. At every row each line sits on a
+// cell centre or halfway between two (and crosses no column between rows), so every cell lies on a
+// line: its exact horizon is its tangent once pushed, as PushTangent's, with no near field and no
+// query, for twice the samples per cell. Same floor conditions as above.
+void BM_HullFloorHalfSlopeLines(benchmark::State& state) {
+  const skyview::Terrain& t = city(bench_size());
+  const int W = t.width(), H = t.height();
+  constexpr int kBand = 256, kPasses = 16;
+  const float* z = t.heights.data();
+  const int first = -(H / 2) - 1, bands = (W - first) / kBand + 1;
+  for (auto _ : state) {
+    for (int pass = 0; pass < kPasses; ++pass) {
+      tbb::parallel_for(0, bands, [&](int band) {
+        const int m0 = first + band * kBand, lines = 2 * kBand;
+        std::unique_ptr<HullPoint[]> arena(new HullPoint[static_cast<std::size_t>(lines) * (H + 1)]);
+        std::vector<int> n(lines, 0);
+        float sink = 0;
+        for (int row = 0; row < H; ++row) {
+          const float* zr = z + static_cast<std::size_t>(row) * W;
+          for (int l = 0; l < lines; ++l) {
+            const int c = m0 + (l + row) / 2;  // line l sits at m0 + (l + row) / 2 cells
+            const bool centre = (l + row) % 2 == 0;
+            if (c < 0 || c + 1 >= W) continue;
+            const HullPoint p{-static_cast<float>(row), centre ? zr[c] : 0.5f * (zr[c] + zr[c + 1])};
+            HullPoint* h = arena.get() + static_cast<std::size_t>(l) * (H + 1);
+            push(h, n[l], p);
+            if (centre && n[l] > 1) sink += (h[n[l] - 2].z - p.z) / (h[n[l] - 2].t - p.t);
+          }
+        }
+        benchmark::DoNotOptimize(sink);
+      });
+    }
+  }
+  state.counters["cell_dirs_per_s"] =
+      benchmark::Counter(static_cast<double>(W) * H * kPasses, benchmark::Counter::kIsIterationInvariantRate);
+}
+
 }  // namespace
 
 BENCHMARK(BM_Sampled16x16)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
@@ -306,4 +344,5 @@ BENCHMARK(BM_SvfWhole16)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(
 BENCHMARK(BM_SvfStreamed16)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_HullFloorPushTangent)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_HullFloorDelayedQueries)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+BENCHMARK(BM_HullFloorHalfSlopeLines)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK_MAIN();
