@@ -205,60 +205,70 @@ float tangent_slope(const HullPoint* h, int n, const HullPoint& p) {
   return (h[lo].z - p.z) / (h[lo].t - p.t);
 }
 
-template <bool kDelayed>
-void run_hull_floor(benchmark::State& state) {
-  const skyview::Terrain& t = city(bench_size());
-  const int W = t.width(), H = t.height();
-  constexpr int kBand = 256, kLag = 64, kPasses = 16;
-  constexpr double kDrift = 0.3;
-  const float* z = t.heights.data();
-  const int first = -static_cast<int>(kDrift * H) - 1, bands = (W - first) / kBand + 1;
+// The floors' common frame: kFloorPasses passes over bands of `lines` hull lines each, the first
+// band starting at minor index `first` and each next one kFloorBand on, on both cores. `walk(m0, arena, n)` runs
+// one band from line m0 (arena: `lines` hulls of H + 1 points each; n: their sizes) and returns a
+// sum that keeps its work from being optimised away.
+constexpr int kFloorBand = 256, kFloorPasses = 16;
+template <class Walk>
+void run_floor(benchmark::State& state, const skyview::Terrain& t, int first, int lines, Walk&& walk) {
+  const int W = t.width(), H = t.height(), bands = (W - first) / kFloorBand + 1;
   for (auto _ : state) {
-    for (int pass = 0; pass < kPasses; ++pass) {
+    for (int pass = 0; pass < kFloorPasses; ++pass) {
       tbb::parallel_for(0, bands, [&](int band) {
-        const int m0 = first + band * kBand;
-        std::unique_ptr<HullPoint[]> arena(new HullPoint[static_cast<std::size_t>(kBand + 1) * (H + 1)]);
-        std::vector<int> n(kBand + 1, 0);
-        std::vector<float> slope(kBand + 1);
-        float sink = 0;
-        for (int row = 0; row < H; ++row) {
-          const int sample_row = kDelayed ? row - kLag : row;
-          if (sample_row >= 0) {
-            const double shift = sample_row * kDrift, base = std::floor(shift);
-            const float f = static_cast<float>(shift - base);
-            const float* zr = z + static_cast<std::size_t>(sample_row) * W;
-            for (int l = 0; l <= kBand; ++l) {
-              const int c = m0 + static_cast<int>(base) + l;
-              if (c < 0 || c + 1 >= W) continue;
-              const HullPoint p{-static_cast<float>(sample_row), zr[c] + f * (zr[c + 1] - zr[c])};
-              HullPoint* h = arena.get() + static_cast<std::size_t>(l) * (H + 1);
-              push(h, n[l], p);
-              if (!kDelayed && n[l] > 1) sink += (h[n[l] - 2].z - p.z) / (h[n[l] - 2].t - p.t);
-            }
-          }
-          if (kDelayed) {
-            const int cell0 = m0 + static_cast<int>(std::floor(row * kDrift)) + 1;
-            const float* zr = z + static_cast<std::size_t>(row) * W;
-            for (int l = 0; l < kBand; ++l) {
-              const int c = cell0 + l;
-              if (c < 0 || c >= W) continue;
-              const HullPoint p{-static_cast<float>(row), zr[c]};
-              float best = -1e30f;
-              for (int side = 0; side < 2; ++side) {
-                if (n[l + side] > 0)
-                  best = std::max(
-                      best, tangent_slope(arena.get() + static_cast<std::size_t>(l + side) * (H + 1), n[l + side], p));
-              }
-              sink += best;
-            }
-          }
-        }
-        benchmark::DoNotOptimize(sink);
+        std::unique_ptr<HullPoint[]> arena(new HullPoint[static_cast<std::size_t>(lines) * (H + 1)]);
+        std::vector<int> n(lines, 0);
+        benchmark::DoNotOptimize(walk(first + band * kFloorBand, arena.get(), n));
       });
     }
   }
   state.counters["cell_dirs_per_s"] =
-      benchmark::Counter(static_cast<double>(W) * H * kPasses, benchmark::Counter::kIsIterationInvariantRate);
+      benchmark::Counter(static_cast<double>(W) * H * kFloorPasses, benchmark::Counter::kIsIterationInvariantRate);
+}
+
+template <bool kDelayed>
+void run_hull_floor(benchmark::State& state) {
+  const skyview::Terrain& t = city(bench_size());
+  const int W = t.width(), H = t.height();
+  constexpr int kBand = kFloorBand, kLag = 64;
+  constexpr double kDrift = 0.3;
+  const float* z = t.heights.data();
+  run_floor(state, t, -static_cast<int>(kDrift * H) - 1, kBand + 1, [&](int m0, HullPoint* arena, std::vector<int>& n) {
+    float sink = 0;
+    for (int row = 0; row < H; ++row) {
+      const int sample_row = kDelayed ? row - kLag : row;
+      if (sample_row >= 0) {
+        const double shift = sample_row * kDrift, base = std::floor(shift);
+        const float f = static_cast<float>(shift - base);
+        const float* zr = z + static_cast<std::size_t>(sample_row) * W;
+        for (int l = 0; l <= kBand; ++l) {
+          const int c = m0 + static_cast<int>(base) + l;
+          if (c < 0 || c + 1 >= W) continue;
+          const HullPoint p{-static_cast<float>(sample_row), zr[c] + f * (zr[c + 1] - zr[c])};
+          HullPoint* h = arena + static_cast<std::size_t>(l) * (H + 1);
+          push(h, n[l], p);
+          if (!kDelayed && n[l] > 1) sink += (h[n[l] - 2].z - p.z) / (h[n[l] - 2].t - p.t);
+        }
+      }
+      if (kDelayed) {
+        const int cell0 = m0 + static_cast<int>(std::floor(row * kDrift)) + 1;
+        const float* zr = z + static_cast<std::size_t>(row) * W;
+        for (int l = 0; l < kBand; ++l) {
+          const int c = cell0 + l;
+          if (c < 0 || c >= W) continue;
+          const HullPoint p{-static_cast<float>(row), zr[c]};
+          float best = -1e30f;
+          for (int side = 0; side < 2; ++side) {
+            if (n[l + side] > 0)
+              best =
+                  std::max(best, tangent_slope(arena + static_cast<std::size_t>(l + side) * (H + 1), n[l + side], p));
+          }
+          sink += best;
+        }
+      }
+    }
+    return sink;
+  });
 }
 void BM_HullFloorPushTangent(benchmark::State& s) { run_hull_floor<false>(s); }
 void BM_HullFloorDelayedQueries(benchmark::State& s) { run_hull_floor<true>(s); }
@@ -270,35 +280,24 @@ void BM_HullFloorDelayedQueries(benchmark::State& s) { run_hull_floor<true>(s); 
 // query, for twice the samples per cell. Same floor conditions as above.
 void BM_HullFloorHalfSlopeLines(benchmark::State& state) {
   const skyview::Terrain& t = city(bench_size());
-  const int W = t.width(), H = t.height();
-  constexpr int kBand = 256, kPasses = 16;
+  const int W = t.width(), H = t.height(), lines = 2 * kFloorBand;
   const float* z = t.heights.data();
-  const int first = -(H / 2) - 1, bands = (W - first) / kBand + 1;
-  for (auto _ : state) {
-    for (int pass = 0; pass < kPasses; ++pass) {
-      tbb::parallel_for(0, bands, [&](int band) {
-        const int m0 = first + band * kBand, lines = 2 * kBand;
-        std::unique_ptr<HullPoint[]> arena(new HullPoint[static_cast<std::size_t>(lines) * (H + 1)]);
-        std::vector<int> n(lines, 0);
-        float sink = 0;
-        for (int row = 0; row < H; ++row) {
-          const float* zr = z + static_cast<std::size_t>(row) * W;
-          for (int l = 0; l < lines; ++l) {
-            const int c = m0 + (l + row) / 2;  // line l sits at m0 + (l + row) / 2 cells
-            const bool centre = (l + row) % 2 == 0;
-            if (c < 0 || c + 1 >= W) continue;
-            const HullPoint p{-static_cast<float>(row), centre ? zr[c] : 0.5f * (zr[c] + zr[c + 1])};
-            HullPoint* h = arena.get() + static_cast<std::size_t>(l) * (H + 1);
-            push(h, n[l], p);
-            if (centre && n[l] > 1) sink += (h[n[l] - 2].z - p.z) / (h[n[l] - 2].t - p.t);
-          }
-        }
-        benchmark::DoNotOptimize(sink);
-      });
+  run_floor(state, t, -(H / 2) - 1, lines, [&](int m0, HullPoint* arena, std::vector<int>& n) {
+    float sink = 0;
+    for (int row = 0; row < H; ++row) {
+      const float* zr = z + static_cast<std::size_t>(row) * W;
+      for (int l = 0; l < lines; ++l) {
+        const int c = m0 + (l + row) / 2;  // line l sits at m0 + (l + row) / 2 cells
+        const bool centre = (l + row) % 2 == 0;
+        if (c < 0 || c + 1 >= W) continue;
+        const HullPoint p{-static_cast<float>(row), centre ? zr[c] : 0.5f * (zr[c] + zr[c + 1])};
+        HullPoint* h = arena + static_cast<std::size_t>(l) * (H + 1);
+        push(h, n[l], p);
+        if (centre && n[l] > 1) sink += (h[n[l] - 2].z - p.z) / (h[n[l] - 2].t - p.t);
+      }
     }
-  }
-  state.counters["cell_dirs_per_s"] =
-      benchmark::Counter(static_cast<double>(W) * H * kPasses, benchmark::Counter::kIsIterationInvariantRate);
+    return sink;
+  });
 }
 
 }  // namespace

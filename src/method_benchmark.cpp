@@ -11,6 +11,7 @@
 #include <set>
 #include <sstream>
 
+#include "opencv_png.h"
 #include "skyview/error.h"
 #include "skyview/raster_io.h"
 
@@ -304,9 +305,7 @@ void plot_bench(const std::string& png_path, const std::string& title, const std
     y += 20;
   }
   cv::putText(img, "line: Pareto front", cv::Point(W - 185, y + 5), cv::FONT_HERSHEY_SIMPLEX, 0.45, black);
-  cv::Mat rgb;
-  cv::cvtColor(img, rgb, cv::COLOR_BGR2RGB);
-  write_png(png_path, rgb.cols, rgb.rows, 3, rgb.ptr<std::uint8_t>(0), overwrite);
+  detail::write_bgr_png(png_path, img, overwrite);
 }
 
 }  // namespace skyview

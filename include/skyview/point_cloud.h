@@ -58,7 +58,7 @@ namespace detail {
 // Implementations, one file each; only open_point_cloud calls them.
 std::unique_ptr<PointCloud> open_las_cloud(const std::string& path);
 std::unique_ptr<PointCloud> open_text_cloud(const std::string& path);
-std::unique_ptr<PointCloud> open_pcl_cloud(const std::string& path);  // .ply, .pcd
+std::unique_ptr<PointCloud> open_pcl_cloud(const std::string& path, bool ply);  // .ply (else .pcd)
 }  // namespace detail
 
 }  // namespace skyview

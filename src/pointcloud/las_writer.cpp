@@ -41,16 +41,17 @@ std::vector<std::uint8_t> projection_vlr(std::uint16_t record_id, const std::str
   return vlr;
 }
 
+// The EPSG code `srs` names for its node `key` (null: the root), or 0.
+long named_epsg(const OGRSpatialReference& srs, const char* key) {
+  const char* authority = srs.GetAuthorityName(key);
+  const char* code = srs.GetAuthorityCode(key);
+  return authority && code && std::string(authority) == "EPSG" ? std::strtol(code, nullptr, 10) : 0;
+}
+
 // The CRS's EPSG code as GeoTIFF can hold it (1 to 32766; above are user-defined and private
 // codes), from its authority or, failing that, from GDAL's matching; 0 if none.
-int epsg_code(OGRSpatialReference& srs, bool projected) {
-  const char* key = projected ? "PROJCS" : "GEOGCS";
-  auto code = [&]() -> long {
-    const char* authority = srs.GetAuthorityName(key);
-    const char* c = srs.GetAuthorityCode(key);
-    return authority && c && std::string(authority) == "EPSG" ? std::strtol(c, nullptr, 10) : 0;
-  };
-  long epsg = code();
+int epsg_code(const OGRSpatialReference& srs, bool projected) {
+  long epsg = named_epsg(srs, projected ? "PROJCS" : "GEOGCS");
   if (epsg <= 0) {
     // The one EPSG CRS GDAL judges equivalent, if exactly one is (confidence 70 and up: the same
     // definition, whatever the names; a proj string's CRS has none).
@@ -59,11 +60,8 @@ int epsg_code(OGRSpatialReference& srs, bool projected) {
     OGRSpatialReferenceH* matches = srs.FindMatches(nullptr, &n, &confidence);
     int sure = 0;
     for (int m = 0; m < n; ++m) {
-      const auto* match = OGRSpatialReference::FromHandle(matches[m]);
-      const char* authority = match->GetAuthorityName(nullptr);
-      const char* c = match->GetAuthorityCode(nullptr);
-      if (confidence[m] >= 70 && authority && c && std::string(authority) == "EPSG")
-        ++sure, epsg = std::strtol(c, nullptr, 10);
+      const long code = named_epsg(*OGRSpatialReference::FromHandle(matches[m]), nullptr);
+      if (confidence[m] >= 70 && code > 0) ++sure, epsg = code;
     }
     OSRFreeSRSArray(matches);
     CPLFree(confidence);
@@ -76,7 +74,7 @@ int epsg_code(OGRSpatialReference& srs, bool projected) {
 // model type (projected or geographic), pixel-is-area, and the code (of the horizontal part: the
 // vertical part of a compound CRS is left to the WKT). Empty for a CRS without a code, which then
 // travels as WKT only.
-std::vector<std::uint8_t> geokeys_of(OGRSpatialReference& srs) {
+std::vector<std::uint8_t> geokeys_of(const OGRSpatialReference& srs) {
   const bool projected = srs.IsProjected();
   if (!projected && !srs.IsGeographic()) return {};
   const int epsg = epsg_code(srs, projected);

@@ -38,11 +38,8 @@ class PclCloud final : public PointCloud {
 
 }  // namespace
 
-std::unique_ptr<PointCloud> detail::open_pcl_cloud(const std::string& path) {
+std::unique_ptr<PointCloud> detail::open_pcl_cloud(const std::string& path, bool ply) {
   if (!std::filesystem::exists(path)) throw Error("cannot open '" + path + "': no such file or not readable");
-  // open_point_cloud only sends .ply and .pcd here, in any letter case.
-  const std::string ext = std::filesystem::path(path).extension().string();
-  const bool ply = ext.size() == 4 && (ext[1] | 0x20) == 'p' && (ext[2] | 0x20) == 'l' && (ext[3] | 0x20) == 'y';
   return std::make_unique<PclCloud>(path, ply);
 }
 

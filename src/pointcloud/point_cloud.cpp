@@ -53,7 +53,7 @@ std::unique_ptr<PointCloud> open_point_cloud(const std::string& path) {
   in.read(magic, 4);
   const std::string ext = lower_extension(path);
   if (std::memcmp(magic, "LASF", 4) == 0 || ext == ".las" || ext == ".laz") return detail::open_las_cloud(path);
-  if (ext == ".ply" || ext == ".pcd") return detail::open_pcl_cloud(path);
+  if (ext == ".ply" || ext == ".pcd") return detail::open_pcl_cloud(path, ext == ".ply");
   if (ext == ".xyz" || ext == ".txt" || ext == ".csv" || ext == ".pts") return detail::open_text_cloud(path);
   throw Error("'" + path + "': unknown point cloud format (supported: .las, .ply, .pcd, .xyz/.txt/.csv/.pts text)");
 }

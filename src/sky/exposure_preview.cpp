@@ -1,6 +1,5 @@
-// Exposure-map preview: two colour-mapped panels with scale bars, drawn with OpenCV and encoded by
-// GDAL's PNG driver (OpenCV's image codecs would bring 15 more shared libraries to every run's
-// start).
+// Exposure-map preview: two colour-mapped panels with scale bars, drawn with OpenCV (opencv_png.h
+// writes them).
 #include "skyview/exposure_preview.h"
 
 #include <algorithm>
@@ -8,7 +7,7 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
-#include "skyview/error.h"
+#include "../opencv_png.h"
 #include "skyview/raster_io.h"
 
 namespace skyview {
@@ -71,9 +70,7 @@ void write_exposure_preview(const std::string& path, const ExposureMap& map, boo
   cv::Mat canvas(2 * panel + kMargin, map.width() + 3 * kMargin + kBar + kLabel, CV_8UC3, cv::Scalar(255, 255, 255));
   draw_panel(canvas, kMargin, map, ExposureBand::diffuse, "diffuse (zenith top, N-E-S-W-N left to right)");
   draw_panel(canvas, kMargin + panel, map, ExposureBand::direct, "direct (sun splatted over its disc)");
-  cv::Mat rgb;
-  cv::cvtColor(canvas, rgb, cv::COLOR_BGR2RGB);
-  write_png(path, rgb.cols, rgb.rows, 3, rgb.ptr<std::uint8_t>(0), overwrite);
+  detail::write_bgr_png(path, canvas, overwrite);
 }
 
 }  // namespace skyview
