@@ -108,12 +108,8 @@ void BM_Sweep15(benchmark::State& s) {
 // planes that the run reuses (each iteration faults in about two per worker, 64 MB each at
 // 4000^2, and the workers' hull arenas), where BM_Sweep16 faults in and fills a whole 1 GB field.
 // The sink only touches each plane; the products are BM_SvfStreamed16's.
-void run_streamed(benchmark::State& state, int directions) {
+void run_streamed(benchmark::State& state, const skyview::HorizonParams& p) {
   const skyview::Terrain& t = city(bench_size());
-  skyview::HorizonParams p = as_skyview_runs();
-  p.directions = directions;
-  p.samples = static_cast<int>(state.range(0));
-  p.far_lines = static_cast<int>(state.range(1));
   auto engine = skyview::make_horizon_engine("sweep", p);
   skyview::HorizonField field;
   for (auto _ : state) {
@@ -126,7 +122,24 @@ void run_streamed(benchmark::State& state, int directions) {
   state.counters["cell_dirs_per_s"] = benchmark::Counter(static_cast<double>(t.width()) * t.height() * p.directions,
                                                          benchmark::Counter::kIsIterationInvariantRate);
 }
+// Near steps and far lines from the benchmark's arguments.
+void run_streamed(benchmark::State& state, int directions) {
+  skyview::HorizonParams p = as_skyview_runs();
+  p.directions = directions;
+  p.samples = static_cast<int>(state.range(0));
+  p.far_lines = static_cast<int>(state.range(1));
+  run_streamed(state, p);
+}
 void BM_Sweep16Streamed(benchmark::State& state) { run_streamed(state, 16); }
+// Directions along the grid's lines (--azimuths grid-lines): every one exact, none with a near
+// field or a far-field search. 4 (the axes) and 8 (and diagonals) price the slope-1/2 lines that
+// 16 adds.
+void BM_SweepGridLinesStreamed(benchmark::State& state) {
+  skyview::HorizonParams p = as_skyview_runs();
+  p.spacing = skyview::AzimuthSpacing::grid_lines;
+  p.directions = static_cast<int>(state.range(0));
+  run_streamed(state, p);
+}
 // The oblique cost as `skyview svf` pays it where few sectors run along the grid: with
 // `--azimuth-origin north` on a projected raster, or a number of directions not a multiple of 8
 // (of 15, only the first runs along the grid).
@@ -334,6 +347,13 @@ BENCHMARK(BM_Sweep16Streamed)
     ->Args({32, 1})
     ->Args({16, 2})
     ->Args({16, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+BENCHMARK(BM_SweepGridLinesStreamed)
+    ->Arg(16)
+    ->Arg(8)
+    ->Arg(4)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);

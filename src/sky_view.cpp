@@ -42,19 +42,31 @@ inline void sincos_quarter(double x, double& s, double& c) {
   c = upper ? sy : cy;
 }
 
-// The sector azimuths' cosines and sines, shared by every cell.
+// The sector azimuths' cosines and sines and the sectors' weights, shared by every cell. Sums
+// over sectors weigh each by `weight` (n times its share: exactly 1 for uniform sectors, so that
+// their sums keep their bits) and are divided by n at the end.
 struct Sectors {
   int n;
-  double share;  // a sector's share of the full circle, Δ / 2π
-  double half;   // sin(Δ / 2)
+  std::vector<double> weight;  // n Δ_k / 2π
+  std::vector<double> share;   // Δ_k / 2π
+  std::vector<double> half;    // sin(Δ_k / 2)
   std::vector<double> cos_phi, sin_phi;
-  explicit Sectors(int n) : n(n), share(1.0 / n), half(std::sin(kPi / n)), cos_phi(n), sin_phi(n) {
+  explicit Sectors(const DirectionSet& set)
+      : n(set.size()), weight(n, 1.0), share(n, 1.0 / n), half(n, std::sin(kPi / n)), cos_phi(n), sin_phi(n) {
+    const bool uniform = set.is_uniform();
     for (int k = 0; k < n; ++k) {
-      cos_phi[k] = std::cos(sector_azimuth(k, n));
-      sin_phi[k] = std::sin(sector_azimuth(k, n));
+      cos_phi[k] = std::cos(set.offset[k]);
+      sin_phi[k] = std::sin(set.offset[k]);
+      if (!uniform) weight[k] = n * set.share[k], share[k] = set.share[k], half[k] = std::sin(kPi * set.share[k]);
     }
   }
+  explicit Sectors(int n) : Sectors(DirectionSet::uniform(n)) {}
 };
+
+// The sectors of a field; uniform where it names none (fields filled by hand).
+Sectors sectors_of(const HorizonField& field) {
+  return field.sectors.size() == field.directions ? Sectors(field.sectors) : Sectors(field.directions);
+}
 
 constexpr int kChunk = 256;  // cells summed together, their sums in the first-level cache
 
@@ -72,8 +84,8 @@ struct SkySums {
   }
   void clear(int i) { svf[i] = visibility[i] = surface[i] = openness[i] = lowest[i] = 0.0; }
 
-  void add_lowest(const float* low, int count) {
-    for (int i = 0; i < count; ++i) lowest[i] += 90.0 + low[i] * (180.0 / kPi);
+  void add_lowest(const float* low, int count, double weight) {
+    for (int i = 0; i < count; ++i) lowest[i] += weight * (90.0 + low[i] * (180.0 / kPi));
   }
 };
 
@@ -88,14 +100,15 @@ template <bool kTilted>
 __attribute__((always_inline)) inline void sector_sums(SkySums& sums, const Sectors& s, int k, const float* h,
                                                        int count) {
   constexpr double kInvPi = 1.0 / kPi, kDegrees = 180.0 / kPi;
-  const double cos_phi = s.cos_phi[k], sin_phi = s.sin_phi[k], share = s.share, half = s.half;
+  const double cos_phi = s.cos_phi[k], sin_phi = s.sin_phi[k], share = s.share[k], half = s.half[k];
+  const double weight = s.weight[k];
   for (int i = 0; i < count; ++i) {
     const double hk = h[i];
     const double above = hk > 0.0 ? hk : 0.0;
     double sin_above, cos_above;
     sincos_quarter(above, sin_above, cos_above);
-    sums.svf[i] += sin_above * sin_above;
-    sums.visibility[i] += sin_above;
+    sums.svf[i] += weight * (sin_above * sin_above);
+    sums.visibility[i] += weight * sin_above;
     if constexpr (kTilted) {
       const double cos_rel = cos_phi * sums.cos_offset[i] - sin_phi * sums.sin_offset[i];
       const double x = -sums.tb[i] * cos_rel;  // tangent of the surface's own horizon
@@ -106,7 +119,7 @@ __attribute__((always_inline)) inline void sector_sums(SkySums& sums, const Sect
       sums.surface[i] +=
           sums.cb[i] * cH * cH * share + sums.sb[i] * cos_rel * half * (0.5 * kPi - H - sH * cH) * kInvPi;
     }
-    sums.openness[i] += 90.0 - hk * kDegrees;
+    sums.openness[i] += weight * (90.0 - hk * kDegrees);
   }
 }
 
@@ -128,7 +141,7 @@ void add_planes(SkySums& sums, const Sectors& sectors, int first, int count, con
                 std::size_t cells, std::size_t c0, int n, bool tilted) {
   for (int k = 0; k < count; ++k) add_sector(sums, sectors, first + k, upper + cells * k + c0, n, tilted);
   if (lower) {
-    for (int k = 0; k < count; ++k) sums.add_lowest(lower + cells * k + c0, n);
+    for (int k = 0; k < count; ++k) sums.add_lowest(lower + cells * k + c0, n, sectors.weight[first + k]);
   }
 }
 
@@ -284,7 +297,7 @@ SkyViewProducts sky_view_products(const Terrain& terrain, const Window& window, 
   const int w = window.cols, h = window.rows, n = field.directions;
   const bool lower = !field.lower.empty();
   std::vector<unsigned char> leaves(static_cast<std::size_t>(w) * h, 0);
-  const Sectors sectors(n);
+  const Sectors sectors = sectors_of(field);
   // Rows in chunks of cells, each summed over every direction's plane with its sums in the
   // first-level cache: contiguous reads, and nothing kept per cell.
   tbb::parallel_for(0, h, [&](int wr) {
@@ -375,7 +388,11 @@ void SkyViewSums::add(int first, int count, const float* upper, const float* low
   State& st = *s_;
   if (first != st.next || count < 1 || first + count > st.sectors.n)
     throw Error("sky-view sums: directions must be added in order (internal error)");
-  if (first == 0) st.lower = lower != nullptr;
+  if (first == 0) {
+    st.lower = lower != nullptr;
+    // The field names its sectors once the engine has set them: they come with the first batch.
+    if (rotations.sectors.size() == st.sectors.n) st.sectors = Sectors(rotations.sectors);
+  }
   if (st.lower != (lower != nullptr))
     throw Error("sky-view sums: lowest angles for some directions only (internal error)");
   const std::size_t cells = st.cells;

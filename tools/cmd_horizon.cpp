@@ -14,7 +14,8 @@ Runner setup(CLI::App& app) {
   add_horizon_job_options(app, *o);
   app.footer(
       "One band per direction, in degrees above the horizontal; band k is centred on azimuth 360*k/N (plus "
-      "SECTOR_ROTATION_DEG with --azimuth-origin grid; each band's AZIMUTH_DEG says where).");
+      "SECTOR_ROTATION_DEG with --azimuth-origin grid; with --azimuths grid-lines on the grid's lines); each band's "
+      "AZIMUTH_DEG says where and SECTOR_WIDTH_DEG how wide an angle it stands for.");
   return [o, &app] {
     refuse_unused(app, "--rays", false, "skyview svf (its Monte-Carlo svf bands)");
     ThreadLimit limit(o->out.threads);
@@ -49,11 +50,17 @@ Runner setup(CLI::App& app) {
     for (int k = 0; k < n; ++k) {
       // In [0, 360) to ten significant digits: a set turned by -0.0001° starts at 359.9998961, and
       // a residue that rounds to 360 reads 0.
-      double azimuth = std::fmod(360.0 * k / n + rotation, 360.0);
+      const bool uniform = job.sectors.is_uniform();
+      const double offset = uniform ? 360.0 * k / n : job.sectors.offset[static_cast<std::size_t>(k)] * 180.0 / M_PI;
+      double azimuth = std::fmod(offset + rotation, 360.0);
       if (azimuth < 0.0) azimuth += 360.0;
       std::string az = number_text(azimuth);
       if (std::stod(az) >= 360.0) az = "0";
-      out.describe(k, {"horizon_azimuth_" + az, "degree", nullptr, {{"AZIMUTH_DEG", az}}});
+      const double width = uniform ? 360.0 / n : 360.0 * job.sectors.share[static_cast<std::size_t>(k)];
+      out.describe(k, {"horizon_azimuth_" + az,
+                       "degree",
+                       nullptr,
+                       {{"AZIMUTH_DEG", az}, {"SECTOR_WIDTH_DEG", number_text(width)}}});
     }
     std::vector<float> degrees;
     // Rows [row0, row0 + rows) of direction k from its plane of radians over those rows.

@@ -58,10 +58,17 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
                  "beyond the sectors' own error)")
       ->check(CLI::IsMember({"north", "grid"}))
       ->capture_default_str();
+  app.add_option("--azimuths", o.azimuths,
+                 "Where the directions point: uniform (every 360/N degrees), or grid-lines (4, 8 or 16 directions "
+                 "along the raster's columns, rows, diagonals and lines of slope 1/2, from grid north: 0, 26.57, "
+                 "45, 63.43, ... degrees on square cells, each weighted by the share of the circle it stands for; "
+                 "the sweep finds them all exactly, 16 of them 1.3-1.5 times faster than uniform)")
+      ->check(CLI::IsMember({"uniform", "grid-lines"}))
+      ->capture_default_str();
   app.add_option("--max-error", o.max_error,
                  "Choose the cheapest method and parameters whose calibrated 99th-percentile error against the "
                  "continuous svf (sector discretisation included) is below this; it sets --method, --directions, "
-                 "--samples, --far-lines and --radius, which are then refused")
+                 "--samples, --far-lines, --radius and --azimuths, which are then refused")
       ->check(number_above(0.0, 1.0));
   app.add_flag("!--no-early-exit", o.params.early_exit,
                "Disable early termination (march and sampled: the max-height pyramid; sweep: skipped far-field "
@@ -78,12 +85,14 @@ namespace {
 void check_options_apply(const HorizonJobOptions& o, const std::string& method) {
   if (!o.app) return;
   if (o.max_error >= 0.0) {
-    for (const char* name : {"--method", "--directions", "--samples", "--far-lines", "--radius"}) {
+    for (const char* name : {"--method", "--directions", "--samples", "--far-lines", "--radius", "--azimuths"}) {
       refuse_unused(*o.app, name, false,
-                    "runs without --max-error, which chooses --method, --directions, --samples, --far-lines and "
-                    "--radius itself");
+                    "runs without --max-error, which chooses --method, --directions, --samples, --far-lines, "
+                    "--radius and --azimuths itself");
     }
   }
+  if (o.azimuths == "grid-lines" && o.app->count("--azimuth-origin") > 0 && o.azimuth_origin != "grid")
+    throw Error("--azimuths grid-lines starts on grid north: leave out --azimuth-origin " + o.azimuth_origin);
   const std::string used_by = " (this run uses " + method + ")";
   refuse_unused(*o.app, "--rays", method == "raycast", "--method raycast" + used_by);
   refuse_unused(*o.app, "--seed", method == "sampled", "--method sampled" + used_by);
@@ -182,6 +191,7 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   std::string method = o.method;
   HorizonParams params = o.params;
   params.azimuth_origin = azimuth_origin_named(o.azimuth_origin);
+  params.spacing = azimuth_spacing_named(o.azimuths);
   std::optional<AccuracyChoice> choice;
   if (o.max_error >= 0.0) {
     choice = choose_for_max_error(o.max_error, params);
@@ -224,9 +234,16 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   record_method(job, o.max_error);
   m["NODATA_POLICY"] = "nodata cells give nodata; nodata inside a search path does not occlude";
   m["ANGLE_CONVENTION"] = "elevation above the horizontal; azimuth clockwise from true north";
-  job.sector_rotation = direction_set_rotation(job.engine->params().azimuth_origin, job.terrain);
-  m["AZIMUTH_ORIGIN"] = o.azimuth_origin == "grid" ? "grid: sector 0 centred on grid north at the raster's centre"
-                                                   : "north: sector 0 centred on true north";
+  job.sector_rotation = direction_set_rotation(job.engine->params(), job.terrain);
+  job.sectors = direction_set(job.engine->params(), job.terrain);
+  const bool grid = job.engine->params().azimuth_origin == AzimuthOrigin::grid ||
+                    job.engine->params().spacing == AzimuthSpacing::grid_lines;
+  m["AZIMUTH_ORIGIN"] =
+      grid ? "grid: sector 0 centred on grid north at the raster's centre" : "north: sector 0 centred on true north";
+  m["AZIMUTHS"] = job.engine->params().spacing == AzimuthSpacing::grid_lines
+                      ? "grid-lines: along the grid's columns, rows, diagonals and slope-1/2 lines, each weighted by "
+                        "half the angle between its neighbours"
+                      : "uniform: every 360/N degrees";
   m["SECTOR_ROTATION_DEG"] = number_text(job.sector_rotation * 180.0 / M_PI);
   return job;
 }

@@ -25,6 +25,7 @@ struct HorizonJobOptions {
   double max_error = -1.0;  // >= 0: choose method and parameters for this p99 svf error
   // Where sector 0 points (AzimuthOrigin): each command sets its default before its options.
   std::string azimuth_origin = "north";
+  std::string azimuths = "uniform";  // AzimuthSpacing
   HorizonParams params;
   OutputOptions out;
   const CLI::App* app = nullptr;  // to tell options given from defaults (set by add_horizon_job_options)
@@ -40,6 +41,7 @@ struct HorizonJob {
   bool quiet = false;
   std::optional<AccuracyChoice> choice;  // --max-error's, when given
   double sector_rotation = 0;            // of the direction set (radians; direction_set_rotation)
+  DirectionSet sectors;                  // its azimuths from sector_rotation, and their weights
   std::vector<std::string> method_keys;  // the metadata keys that describe the method
 };
 

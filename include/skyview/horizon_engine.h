@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "skyview/direction_set.h"
 #include "skyview/large_pages.h"
 #include "skyview/progress.h"
 #include "skyview/terrain.h"
@@ -42,6 +43,7 @@ struct HorizonParams {
   double refraction = 0.13;        // refraction coefficient k when curvature is on
   std::string curvature = "auto";  // auto | on | off
   AzimuthOrigin azimuth_origin = AzimuthOrigin::north;
+  AzimuthSpacing spacing = AzimuthSpacing::uniform;  // grid_lines: 4, 8 or 16, from grid north
 };
 
 // Horizons of a window of cells, one plane (window-sized, row-major) per direction: a sweep
@@ -54,13 +56,14 @@ struct HorizonField {
   std::vector<float, LargePageAllocator<float>> upper;  // radians, [direction][cell]; NaN on nodata cells
   std::vector<float, LargePageAllocator<float>> lower;  // radians, lowest angle seen; empty unless requested
   double sector_rotation = 0;   // azimuth of sector 0's centre (radians; HorizonParams::azimuth_origin)
+  DirectionSet sectors;         // the sectors' azimuths from sector_rotation, and their weights
   std::vector<float> rotation;  // per-cell azimuth offset of the direction set (radians); empty = 0
   // Monte-Carlo estimates some methods (raycast) give directly; empty otherwise.
   std::vector<float> svf_direct;
   std::vector<float> svf_stderr;
 
-  // Sizes the planes (NaN everywhere) and clears the per-cell extras; keeps sector_rotation, which
-  // HorizonEngine::compute sets before the method runs and the method reads.
+  // Sizes the planes (NaN everywhere) and clears the per-cell extras; keeps sector_rotation and
+  // sectors, which HorizonEngine::compute sets before the method runs and the method reads.
   void resize(int c, int r, int d, bool with_lower);
   std::size_t cell(int col, int row) const { return static_cast<std::size_t>(row) * cols + col; }
   std::size_t cells() const { return static_cast<std::size_t>(cols) * rows; }
@@ -71,6 +74,8 @@ struct HorizonField {
   float& lower_at(std::size_t cell, int k) { return lower[cells() * k + cell]; }
   float lower_at(std::size_t cell, int k) const { return lower[cells() * k + cell]; }
   double azimuth(std::size_t cell, int k) const;  // centre azimuth of sector k for a cell
+  // Sector k's azimuth for the whole set, before any cell's own rotation.
+  double set_azimuth(int k) const { return sector_rotation + sectors.offset[static_cast<std::size_t>(k)]; }
   // The rotation of a cell's sectors from north: the field's and the cell's own.
   double cell_rotation(std::size_t cell) const { return sector_rotation + (rotation.empty() ? 0.0 : rotation[cell]); }
 };
@@ -148,5 +153,10 @@ inline double sector_azimuth(int k, int directions) { return 2.0 * 3.14159265358
 // AzimuthOrigin::north, the azimuth of grid north at the raster's centre for AzimuthOrigin::grid.
 // The same for every tile and block of a raster.
 double direction_set_rotation(AzimuthOrigin origin, const Terrain& terrain);
+// The rotation and the sectors `params` ask for on `terrain`: grid lines start on grid north
+// whatever the origin, and their azimuths follow the raster's centre Jacobian (shared by every
+// tile and block).
+double direction_set_rotation(const HorizonParams& params, const Terrain& terrain);
+DirectionSet direction_set(const HorizonParams& params, const Terrain& terrain);
 
 }  // namespace skyview

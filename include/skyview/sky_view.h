@@ -7,6 +7,8 @@
 //   svf_surface    = Σ [cosβ cos²H_k Δ/2π + sinβ cos(φ_k-A) sin(Δ/2) (π/2 - H_k - sinH_k cosH_k)/π]
 //                    with H_k = max(h_k, t_k, 0), t_k the surface plane's own horizon
 //   openness_positive = mean(90° - h_k), openness_negative = mean(90° + lowest angle_k)  (Yokoyama 2002)
+// Where the sectors are uneven (AzimuthSpacing::grid_lines) each sector's term weighs its own share
+// Δ_k / 2π instead of 1/N (HorizonField::sectors): the trapezoid rule over azimuth.
 #include <memory>
 #include <string>
 #include <vector>

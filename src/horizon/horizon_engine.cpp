@@ -23,7 +23,7 @@ void HorizonField::resize(int c, int r, int d, bool with_lower) {
 }
 
 double HorizonField::azimuth(std::size_t cell, int k) const {
-  return sector_azimuth(k, directions) + cell_rotation(cell);
+  return sectors.offset[static_cast<std::size_t>(k)] + cell_rotation(cell);
 }
 
 const char* azimuth_origin_name(AzimuthOrigin origin) { return origin == AzimuthOrigin::grid ? "grid" : "north"; }
@@ -41,6 +41,17 @@ double direction_set_rotation(AzimuthOrigin origin, const Terrain& terrain) {
   return std::atan2(-j.b, -j.d);
 }
 
+double direction_set_rotation(const HorizonParams& params, const Terrain& terrain) {
+  const bool grid = params.spacing == AzimuthSpacing::grid_lines || params.azimuth_origin == AzimuthOrigin::grid;
+  return direction_set_rotation(grid ? AzimuthOrigin::grid : AzimuthOrigin::north, terrain);
+}
+
+DirectionSet direction_set(const HorizonParams& params, const Terrain& terrain) {
+  if (params.spacing == AzimuthSpacing::grid_lines)
+    return DirectionSet::grid_lines(params.directions, raster_centre_jacobian(terrain));
+  return DirectionSet::uniform(params.directions);
+}
+
 double HorizonEngine::curvature_coefficient(const Terrain& terrain) const {
   return detail::curvature_coefficient(params(), radius(), terrain.frame.earth_radius());
 }
@@ -49,7 +60,8 @@ void HorizonEngine::compute(const Terrain& terrain, const Window& window, Horizo
                             ProgressCounter& progress) const {
   Window inner;
   const Terrain extended = extend_at_raster_edges(terrain, window, inner);
-  out.sector_rotation = direction_set_rotation(params().azimuth_origin, extended);
+  out.sector_rotation = direction_set_rotation(params(), extended);
+  out.sectors = direction_set(params(), extended);
   compute_window(extended, inner, out, progress);
 }
 
@@ -57,7 +69,8 @@ void HorizonEngine::compute_directions(const Terrain& terrain, const Window& win
                                        ProgressCounter& progress, const DirectionBatchSink& take) const {
   Window inner;
   const Terrain extended = extend_at_raster_edges(terrain, window, inner);
-  out.sector_rotation = direction_set_rotation(params().azimuth_origin, extended);
+  out.sector_rotation = direction_set_rotation(params(), extended);
+  out.sectors = direction_set(params(), extended);
   compute_window_directions(extended, inner, out, progress, take);
 }
 
@@ -96,6 +109,12 @@ std::vector<std::string> horizon_method_names() { return {"sampled", "march", "s
 std::unique_ptr<HorizonEngine> make_horizon_engine(std::string_view method, const HorizonParams& params) {
   if (params.directions < 1 || params.directions > 4096) throw Error("--directions must be between 1 and 4096");
   if (!(params.radius >= 0.0) || std::isinf(params.radius)) throw Error("--radius must be a positive number of metres");
+  if (params.spacing == AzimuthSpacing::grid_lines) {
+    if (!grid_lines_support(params.directions))
+      throw Error("--azimuths grid-lines needs 4, 8 or 16 directions (got " + std::to_string(params.directions) + ")");
+    if (method == "sampled")
+      throw Error("--azimuths grid-lines needs fixed directions: the sampled method turns each cell's set at random");
+  }
   if (method == "sampled") return detail::make_sampled_engine(params);
   if (method == "march") return detail::make_march_engine(params);
   if (method == "sweep") return detail::make_sweep_engine(params);

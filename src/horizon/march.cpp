@@ -73,6 +73,7 @@ void exact_horizons_at(const Terrain& extended, const std::vector<CellIndex>& ce
   s.directions = directions;
   s.curvature = curvature;
   out.sector_rotation = sector_rotation;
+  out.sectors = DirectionSet::uniform(directions);
   scan_cells(extended, cells, out, s, EveryCrossing{std::numeric_limits<double>::infinity()});
 }
 

@@ -97,8 +97,8 @@ struct MaxBlocks {
 template <class Placement>
 class RayScanner {
  public:
-  // `sector_rotation`: the whole set's (HorizonField::sector_rotation).
-  RayScanner(const Terrain& terrain, const ScanSettings& s, const Placement& placement, double sector_rotation)
+  // `field`: whose sectors (HorizonField::sector_rotation and sectors) to scan.
+  RayScanner(const Terrain& terrain, const ScanSettings& s, const Placement& placement, const HorizonField& field)
       : terrain_(terrain), s_(s), placement_(placement), sampler_(terrain) {
     for (float z : terrain.heights.values()) {
       if (!std::isnan(z)) {
@@ -109,8 +109,8 @@ class RayScanner {
     sin_k_.resize(s.directions);
     cos_k_.resize(s.directions);
     for (int k = 0; k < s.directions; ++k) {
-      sin_k_[k] = std::sin(sector_azimuth(k, s.directions) + sector_rotation);
-      cos_k_[k] = std::cos(sector_azimuth(k, s.directions) + sector_rotation);
+      sin_k_[k] = std::sin(field.set_azimuth(k));
+      cos_k_[k] = std::cos(field.set_azimuth(k));
     }
     // Only a placement that reads every crossing has runs of samples inside one block to skip.
     if (s.early_exit && Placement::kDenseSteps) {
@@ -227,7 +227,7 @@ void scan_rays(const Terrain& terrain, const Window& window, HorizonField& out, 
                const ScanSettings& s, const Placement& placement) {
   out.resize(window.cols, window.rows, s.directions, s.lower);
   if (s.rotate) out.rotation.assign(static_cast<std::size_t>(window.cols) * window.rows, 0.0f);
-  const RayScanner<Placement> scanner(terrain, s, placement, out.sector_rotation);
+  const RayScanner<Placement> scanner(terrain, s, placement, out);
   tbb::parallel_for(tbb::blocked_range<int>(0, window.rows), [&](const tbb::blocked_range<int>& range) {
     for (int wr = range.begin(); wr != range.end(); ++wr) {
       const int row = window.row0 + wr;
@@ -251,7 +251,7 @@ void scan_cells(const Terrain& terrain, const std::vector<CellIndex>& cells, Hor
   const int n = static_cast<int>(cells.size());
   out.resize(n, 1, s.directions, s.lower);
   if (s.rotate) out.rotation.assign(cells.size(), 0.0f);
-  const RayScanner<Placement> scanner(terrain, s, placement, out.sector_rotation);
+  const RayScanner<Placement> scanner(terrain, s, placement, out);
   tbb::parallel_for(tbb::blocked_range<int>(0, n, 8), [&](const tbb::blocked_range<int>& range) {
     for (int i = range.begin(); i != range.end(); ++i) {
       if (!terrain.valid(cells[i].col, cells[i].row)) continue;

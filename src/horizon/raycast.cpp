@@ -326,8 +326,8 @@ class RaycastEngine final : public HorizonEngine {
     const int n = p_.directions;
     std::vector<double> sin_k(n), cos_k(n);
     for (int k = 0; k < n; ++k) {
-      sin_k[k] = std::sin(sector_azimuth(k, n) + out.sector_rotation);
-      cos_k[k] = std::cos(sector_azimuth(k, n) + out.sector_rotation);
+      sin_k[k] = std::sin(out.set_azimuth(k));
+      cos_k[k] = std::cos(out.set_azimuth(k));
     }
     const double range = radius();
     std::vector<double> reach_k(n);

@@ -225,6 +225,7 @@ SweepGeometry make_geometry(const Terrain& terrain, const float* transposed, dou
   const double residue = 1e-4 / std::max(1, g.by_rows ? terrain.raster_height() : terrain.raster_width());
   if (std::abs(g.k) < residue) g.k = 0.0;
   if (std::abs(std::abs(g.k) - 1.0) < residue) g.k = std::copysign(1.0, g.k);
+  if (std::abs(std::abs(g.k) - 0.5) < residue) g.k = std::copysign(0.5, g.k);  // half slopes (grid lines)
   g.t_major = g.by_rows ? t_row : t_col;
   g.t_minor = g.by_rows ? t_col : t_row;
   g.toward = (g.by_rows ? pr < 0 : pc < 0) ? -1 : 1;  // the viewer looks towards index 0 when -1
@@ -490,27 +491,33 @@ class DirectionSweep {
     // minor crossing between near_steps and near_steps + 1 steps ahead); where a sheared frame
     // makes that bound useless (far_gap <= 0), no far-field search is skipped.
     same_ = 1e-9 * g.t_step;
-    on_lines_ = g.k == 0.0 || std::abs(g.k) == 1.0;
+    per_cell_ = std::abs(g.k) == 0.5 ? 2 : 1;
+    on_lines_ = g.k == 0.0 || std::abs(g.k) == 1.0 || per_cell_ == 2;
     far_gap_ = std::max(0.0, near_steps * g.t_step - std::abs(g.t_minor));
     inv_far_gap_ = far_gap_ > 0.0 ? 1.0 / far_gap_ : kInf;
   }
 
   int walks() const { return n_walks_; }
+  // Lines per band (it keeps one hull more), and the samples a line can hold. Half-slope lines
+  // take one sample a step, so a band keeps twice the lines in the same arena: a row's strip
+  // stays kBand cells wide.
+  int band_lines() const { return kBand * per_cell_; }
+  std::size_t line_capacity() const { return (2 * static_cast<std::size_t>(g_.major_n) + 2) / per_cell_; }
 
   // Lines holding the window's cells: the first band's first line and the number of bands.
-  long first_line() const { return static_cast<long>(std::floor(lo_ - max_shift())) - 1; }
+  long first_line() const { return static_cast<long>(std::floor(per_cell_ * (lo_ - max_shift()))) - 1; }
   long bands() const {
     if (wa_ >= wb_ || lo_ >= hi_) return 0;
-    const long last = static_cast<long>(std::floor(hi_ - 1 - min_shift())) + 1;
-    return (last - first_line()) / kBand + 1;
+    const long last = static_cast<long>(std::floor(per_cell_ * (hi_ - 1 - min_shift()))) + 1;
+    return (last - first_line()) / band_lines() + 1;
   }
 
-  // The band of strips from line m0, with each walk's hulls (kBand + 1 lines, capacity two samples
+  // The band of strips from line m0, with each walk's hulls (band_lines() + 1, line_capacity() samples
   // per step each) and row-sized scratch of slopes.
   void run_band(long m0, const WalkState* state) const {
     const SweepGeometry& g = g_;
     for (int w = 0; w < n_walks_; ++w) {
-      for (int l = 0; l <= kBand; ++l) state[w].hulls[l].clear();
+      for (int l = 0; l <= band_lines(); ++l) state[w].hulls[l].clear();
     }
     if (on_lines_) {
       for (int step = 0; step <= last_step_; ++step) cells_on_lines(m0, steps_[static_cast<std::size_t>(step)], state);
@@ -593,26 +600,44 @@ class DirectionSweep {
   // Along an axis or a diagonal every line runs through cell centres and holds no other sample
   // (no minor grid line is crossed between steps), so a cell's own ray is its line: the cell is the
   // line's next sample, and pushing it finds its exact horizon (the design, Stewart's),
-  // with no near field and no search. Every cell of the band is pushed, those outside the window
-  // too (they occlude).
+  // with no near field and no search. Along a half slope (k = ±1/2) lines run half a cell apart:
+  // at each step every other line passes through a cell centre and the rest through the midpoints
+  // between two cells of the row, which they read linearly (the mesh is linear along rows); they
+  // cross no other grid line between steps, so the same holds at twice the pushes. Every cell of
+  // the band is pushed, those outside the window too (they occlude).
   void cells_on_lines(long m0, const StepLines& here, const WalkState* state) const {
     const int major = here.major;
-    const long first = here.first_cell(m0);
-    const int a = static_cast<int>(std::max<long>(0, first));
-    const int b = static_cast<int>(std::min<long>(g_.minor_n, here.first_cell(m0 + kBand)));
-    if (a >= b) return;
+    const long per = per_cell_;
+    const long s = std::lround(per * here.shift);  // cell i lies on line per * i - s
+    // The first cell (or midpoint after it) whose line is at or after line m.
+    auto first_at = [&](long m, long midpoint) {
+      const long x = m + s - midpoint;
+      return x >= 0 ? (x + per - 1) / per : -((-x) / per);
+    };
+    const int a = static_cast<int>(std::max<long>(0, first_at(m0, 0)));
+    const int b = static_cast<int>(std::min<long>(g_.minor_n, first_at(m0 + band_lines(), 0)));
+    const int ma = per == 2 ? static_cast<int>(std::max<long>(0, first_at(m0, 1))) : 0;
+    const int mb = per == 2 ? static_cast<int>(std::min<long>(g_.minor_n - 1, first_at(m0 + band_lines(), 1))) : 0;
+    if (a >= b && ma >= mb) return;
     const float* zrow = g_.row(major);
     const double t_row = major * g_.t_major;
     for (int w = 0; w < n_walks_; ++w) {
       const Walk& walk = walks_[w];
-      LineHull* hulls = state[w].hulls + (a - first);
+      LineHull* hulls = state[w].hulls;  // line m's hull at hulls[m - m0]
+      const long base = -m0 - s;
+      for (int i = ma; i < mb; ++i) {
+        const double z = zrow[i] + 0.5 * (static_cast<double>(zrow[i + 1]) - zrow[i]);
+        if (std::isnan(z)) continue;  // nodata never occludes
+        const double t = t_row + (i + 0.5) * g_.t_minor;
+        hulls[base + 2 * i + 1].push({t, walk.folded(t, z)}, same_);
+      }
       float* best = state[w].best;
       for (int minor = a; minor < b; ++minor) {
         const float zc = zrow[minor];
         if (std::isnan(zc)) continue;  // written as NaN; nodata never occludes
         const double t = t_row + minor * g_.t_minor;
         const HullPoint p{t, walk.folded(t, zc)};
-        const HullPoint* tangent = hulls[minor - a].push(p, same_);
+        const HullPoint* tangent = hulls[base + per * minor].push(p, same_);
         best[minor] = tangent ? static_cast<float>((tangent->z - p.z) / (tangent->t - p.t) + 2.0 * walk.c * t)
                               : -std::numeric_limits<float>::infinity();
       }
@@ -706,6 +731,7 @@ class DirectionSweep {
   double far_gap_ = 0, inv_far_gap_ = kInf;
   double same_ = 0;        // samples closer than this along a line are one (see LineHull::push)
   bool on_lines_ = false;  // every cell lies on a line (cells_on_lines)
+  int per_cell_ = 1;       // lines per cell across the minor axis: 2 on half slopes, where k = ±1/2
   std::vector<NearCrossing> near_;
   std::vector<StepLines> steps_;
   int wa_ = 0, wb_ = 0, lo_ = 0, hi_ = 0, last_step_ = -1;
@@ -717,10 +743,10 @@ class DirectionSweep {
 // BM_Sweep15, within the machine's noise).
 class BandScratch {
  public:
-  // Hulls for `walks` walks over lines of at most `capacity` samples and slopes for rows of `row`
-  // cells, into `state`.
-  void prepare(std::size_t capacity, int walks, std::size_t row, WalkState* state) {
-    const std::size_t lines = static_cast<std::size_t>(kBand + 1) * walks;
+  // Hulls for `walks` walks over `band_lines` + 1 lines of at most `capacity` samples each and
+  // slopes for rows of `row` cells, into `state`.
+  void prepare(int band_lines, std::size_t capacity, int walks, std::size_t row, WalkState* state) {
+    const std::size_t per_walk = static_cast<std::size_t>(band_lines) + 1, lines = per_walk * walks;
     if (capacity * lines > points_size_) {
       points_ = allocate_large<HullPoint>(capacity * lines);
       points_size_ = capacity * lines;
@@ -728,7 +754,7 @@ class BandScratch {
     hulls_.resize(lines);
     for (std::size_t l = 0; l < lines; ++l) hulls_[l].points = points_.get() + capacity * l;
     best_.resize(row * walks);
-    for (int w = 0; w < walks; ++w) state[w] = {hulls_.data() + (kBand + 1) * w, best_.data() + row * w};
+    for (int w = 0; w < walks; ++w) state[w] = {hulls_.data() + per_walk * w, best_.data() + row * w};
   }
 
  private:
@@ -774,7 +800,6 @@ void sweep_direction(const Terrain& terrain, const float* transposed, const Wind
     return;
   }
   const DirectionSweep sweep(g, window, near_steps, far_lines, early_exit, curvature, upper_plane, lower_plane);
-  const std::size_t capacity = 2 * static_cast<std::size_t>(g.major_n) + 2;
   const long first = sweep.first_line(), bands = sweep.bands();
   // Bands are independent and write disjoint cells, so they run in parallel too: the last
   // directions of a run no longer leave a core idle. Isolated, so that a worker waiting for this
@@ -782,8 +807,8 @@ void sweep_direction(const Terrain& terrain, const float* transposed, const Wind
   tbb::this_task_arena::isolate([&] {
     tbb::parallel_for(0L, bands, [&](long band) {
       WalkState state[DirectionSweep::kMaxWalks];
-      scratches.local().prepare(capacity, sweep.walks(), row, state);
-      sweep.run_band(first + band * kBand, state);
+      scratches.local().prepare(sweep.band_lines(), sweep.line_capacity(), sweep.walks(), row, state);
+      sweep.run_band(first + band * sweep.band_lines(), state);
     });
   });
 }
@@ -822,7 +847,7 @@ class SweepEngine final : public HorizonEngine {
   void compute_window(const Terrain& terrain, const Window& window, HorizonField& out,
                       ProgressCounter& progress) const override {
     out.resize(window.cols, window.rows, p_.directions, p_.lower);
-    const Inputs in = inputs(terrain, out.sector_rotation);
+    const Inputs in = inputs(terrain, out);
     BandScratches scratches;
     tbb::parallel_for(0, p_.directions, [&](int k) {
       sweep(terrain, in, window, k, scratches, out.upper_plane(k), p_.lower ? out.lower_plane(k) : nullptr);
@@ -842,7 +867,7 @@ class SweepEngine final : public HorizonEngine {
                                  ProgressCounter& progress, const DirectionBatchSink& take) const override {
     out.resize(0, 0, p_.directions, false);
     out.cols = window.cols, out.rows = window.rows;
-    const Inputs in = inputs(terrain, out.sector_rotation);
+    const Inputs in = inputs(terrain, out);
     const std::size_t cells = window.cells();
     struct Planes {
       LargeBuffer<float> upper, lower;
@@ -893,13 +918,13 @@ class SweepEngine final : public HorizonEngine {
   // advancing by columns read contiguous memory too.
   struct Inputs {
     double c;
-    double rotation;  // of the direction set (HorizonField::sector_rotation)
+    std::vector<double> azimuth;  // of each direction (HorizonField::set_azimuth)
     LargeBuffer<float> transposed;
   };
-  Inputs inputs(const Terrain& terrain, double rotation) const {
+  Inputs inputs(const Terrain& terrain, const HorizonField& field) const {
     Inputs in;
     in.c = curvature_coefficient(terrain);
-    in.rotation = rotation;
+    for (int k = 0; k < p_.directions; ++k) in.azimuth.push_back(field.set_azimuth(k));
     const int W = terrain.width(), H = terrain.height();
     in.transposed = allocate_large<float>(static_cast<std::size_t>(W) * H);
     // In tiles, so that both the reads and the writes stay within cache lines already loaded.
@@ -916,8 +941,8 @@ class SweepEngine final : public HorizonEngine {
   }
   void sweep(const Terrain& terrain, const Inputs& in, const Window& window, int k, BandScratches& scratches,
              float* upper, float* lower) const {
-    sweep_direction(terrain, in.transposed.get(), window, sector_azimuth(k, p_.directions) + in.rotation, in.c,
-                    p_.samples, p_.far_lines, p_.early_exit, radius(), scratches, upper, lower);
+    sweep_direction(terrain, in.transposed.get(), window, in.azimuth[static_cast<std::size_t>(k)], in.c, p_.samples,
+                    p_.far_lines, p_.early_exit, radius(), scratches, upper, lower);
   }
 
   HorizonParams p_;

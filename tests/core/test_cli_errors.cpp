@@ -352,6 +352,31 @@ TEST_F(CliErrors, SectorsFromGridNorthNameTheirTrueAzimuths) {
   EXPECT_EQ(std::string(ds->GetMetadataItem("AZIMUTH_ORIGIN")).rfind("north", 0), 0u);
 }
 
+// --azimuths grid-lines: the bands name the grid's lines and the angle each stands for, the
+// outputs say so, and counts or methods it cannot serve are refused with one line.
+TEST_F(CliErrors, GridLineAzimuthsNameTheirBandsAndRefuseWhatTheyCannotServe) {
+  const std::string h = dir + "/h.tif", s = dir + "/s.tif";
+  ASSERT_EQ(run_skyview("horizon " + good + " " + h + " --directions 16 --azimuths grid-lines", dir).exit_code, 0);
+  GDALDatasetUniquePtr ds(GDALDataset::Open(h.c_str(), GDAL_OF_RASTER));
+  ASSERT_EQ(ds->GetRasterCount(), 16);
+  EXPECT_STREQ(ds->GetRasterBand(2)->GetDescription(), "horizon_azimuth_26.56505118");
+  EXPECT_STREQ(ds->GetRasterBand(3)->GetDescription(), "horizon_azimuth_45");
+  EXPECT_NEAR(std::stod(ds->GetRasterBand(3)->GetMetadataItem("SECTOR_WIDTH_DEG")), 13.75, 0.01);
+  EXPECT_EQ(std::string(ds->GetMetadataItem("AZIMUTHS")).rfind("grid-lines", 0), 0u);
+  ASSERT_EQ(run_skyview("svf " + good + " " + s + " --products svf --azimuths grid-lines", dir).exit_code, 0);
+  expect_one_line_error(
+      run_skyview("svf " + good + " " + s + " --overwrite --azimuths grid-lines --directions 32", dir),
+      "needs 4, 8 or 16 directions (got 32)");
+  expect_one_line_error(
+      run_skyview("svf " + good + " " + s + " --overwrite --azimuths grid-lines --directions 16 --method sampled", dir),
+      "needs fixed directions");
+  expect_one_line_error(
+      run_skyview("svf " + good + " " + s + " --overwrite --azimuths grid-lines --max-error 0.01", dir), "--azimuths");
+  expect_one_line_error(
+      run_skyview("horizon " + good + " " + h + " --overwrite --azimuths grid-lines --azimuth-origin north", dir),
+      "starts on grid north");
+}
+
 // GDAL's message for a format that cannot hold the bands breaks lines; the error stays one line.
 // Formats of bytes would round svf to 0 or 1 with only a warning: they are refused first.
 TEST_F(CliErrors, FormatThatCannotHoldTheBands) {

@@ -1,0 +1,45 @@
+#pragma once
+// The azimuths a horizon field holds and how much each weighs in sums over azimuth (svf, sky
+// visibility, openness). Uniform sectors are the default. Along grid lines the directions follow
+// the raster's digital lines: its columns, rows, diagonals and, with 16 directions, the lines of
+// slope 1/2 (pixel steps such as (1, 2)). There every cell lies on a line through cell centres, so
+// the sweep finds each horizon exactly when it pushes the cell, with no near field and no search
+// (docs/sky_view.md). Those directions are unevenly spaced (on square cells 26.57° apart around
+// an axis, 18.43° around a diagonal), so each has its own weight: the shares that integrate the
+// low harmonics of azimuth exactly (src/direction_set.cpp).
+#include <string_view>
+#include <vector>
+
+#include "skyview/ground_frame.h"
+
+namespace skyview {
+
+// How the directions are spread: `uniform` (2πk/N from the set's rotation) or `grid_lines`
+// (4, 8 or 16 digital lines of the grid, from grid north).
+enum class AzimuthSpacing { uniform, grid_lines };
+// "uniform" or "grid-lines", as --azimuths and the outputs' metadata spell it; the parser throws
+// skyview::Error for any other name.
+const char* azimuth_spacing_name(AzimuthSpacing spacing);
+AzimuthSpacing azimuth_spacing_named(std::string_view name);
+
+struct DirectionSet {
+  // Sector k's azimuth from the set's rotation (radians, clockwise), rising from 0 below 2π.
+  std::vector<double> offset;
+  // Its weight in sums over azimuth, the share of the circle it stands for: 1/N for uniform
+  // sectors; for grid lines those that sum cos jφ and sin jφ (j up to N/2) as exactly as the
+  // directions allow. The shares add up to one.
+  std::vector<double> share;
+
+  int size() const { return static_cast<int>(offset.size()); }
+  bool is_uniform() const;  // every share equal (to 1e-12)
+
+  static DirectionSet uniform(int n);
+  // The 4, 8 or 16 digital lines of a grid whose pixel steps map to the ground by `j`, from the
+  // direction of a step up the columns (grid north); throws skyview::Error for other counts.
+  static DirectionSet grid_lines(int n, const Jacobian& j);
+};
+
+// Direction counts that AzimuthSpacing::grid_lines supports.
+bool grid_lines_support(int directions);
+
+}  // namespace skyview
