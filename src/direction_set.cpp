@@ -84,23 +84,28 @@ DirectionSet DirectionSet::uniform(int n) {
   return set;
 }
 
-bool grid_lines_support(int directions) { return directions == 4 || directions == 8 || directions == 16; }
+void check_grid_lines_count(int directions) {
+  if (directions != 4 && directions != 8 && directions != 16)
+    throw Error("--azimuths grid-lines needs 4, 8 or 16 directions (got " + std::to_string(directions) + ")");
+}
 
 DirectionSet DirectionSet::grid_lines(int n, const Jacobian& j) {
-  if (!grid_lines_support(n))
-    throw Error("--azimuths grid-lines needs 4, 8 or 16 directions (got " + std::to_string(n) + ")");
+  check_grid_lines_count(n);
   // Pixel steps (column, row) clockwise from one row up, per octant: the axis, the slope-1/2
   // line, the diagonal, the slope-2 line. 8 directions drop the slope lines, 4 keep the axes.
   static constexpr int kSteps[16][2] = {{0, -1}, {1, -2}, {1, -1}, {2, -1}, {1, 0},  {2, 1},   {1, 1},   {1, 2},
                                         {0, 1},  {-1, 2}, {-1, 1}, {-2, 1}, {-1, 0}, {-2, -1}, {-1, -1}, {-1, -2}};
   const int every = 16 / n;
+  // A mirrored grid (rows running north, or columns west) turns those steps anticlockwise on the
+  // ground: walk them the other way round.
+  const bool mirrored = j.a * j.d - j.b * j.c > 0.0;
   auto azimuth = [&](const int* step) {
     return std::atan2(j.a * step[0] + j.b * step[1], j.c * step[0] + j.d * step[1]);
   };
   const double north = azimuth(kSteps[0]);
   DirectionSet set;
   for (int k = 0; k < 16; k += every) {
-    double off = std::remainder(azimuth(kSteps[k]) - north, kTwoPi);
+    double off = std::remainder(azimuth(kSteps[mirrored ? (16 - k) % 16 : k]) - north, kTwoPi);
     if (off < 0.0) off += kTwoPi;
     if (k == 0) off = 0.0;
     // A sheared frame could fold the steps out of clockwise order; no raster's CRS does.

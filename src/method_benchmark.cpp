@@ -21,7 +21,10 @@ std::string BenchConfig::label() const {
   std::ostringstream s;
   s << method << " d=" << params.directions;
   if (method == "sampled") s << " s=" << params.samples;
-  if (method == "sweep") s << " near=" << params.samples << (params.far_lines == 1 ? " 1 line" : " 2 lines");
+  if (params.spacing == AzimuthSpacing::grid_lines)
+    s << " grid lines";  // every direction exact: no near steps, no far lines
+  else if (method == "sweep")
+    s << " near=" << params.samples << (params.far_lines == 1 ? " 1 line" : " 2 lines");
   if (method == "sampled" || method == "march") s << " r=" << (params.radius == 0 ? 500 : params.radius);
   return s.str();
 }
@@ -56,6 +59,11 @@ std::vector<BenchConfig> default_bench_grid(const std::vector<std::string>& meth
           }
         }
       }
+      // 16 directions along the grid's lines, each found exactly (--azimuths grid-lines).
+      BenchConfig c{m, {}};
+      c.params.directions = 16;
+      c.params.spacing = AzimuthSpacing::grid_lines;
+      grid.push_back(c);
     } else if (m == "march") {
       for (int d : {8, 16, 32, 64}) {
         BenchConfig c{m, {}};
@@ -186,6 +194,7 @@ nlohmann::json bench_to_json(const std::string& raster, const BenchReference& re
     nlohmann::json row = {{"method", r.config.method},
                           {"label", r.config.label()},
                           {"directions", r.config.params.directions},
+                          {"azimuths", azimuth_spacing_name(r.config.params.spacing)},
                           {"samples", r.config.params.samples},
                           {"radius_m", std::isinf(r.radius) ? nlohmann::json() : nlohmann::json(r.radius)},
                           {"reference_limited", ref.limits(r.config)},

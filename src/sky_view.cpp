@@ -63,11 +63,6 @@ struct Sectors {
   explicit Sectors(int n) : Sectors(DirectionSet::uniform(n)) {}
 };
 
-// The sectors of a field; uniform where it names none (fields filled by hand).
-Sectors sectors_of(const HorizonField& field) {
-  return field.sectors.size() == field.directions ? Sectors(field.sectors) : Sectors(field.directions);
-}
-
 constexpr int kChunk = 256;  // cells summed together, their sums in the first-level cache
 
 // A chunk of consecutive cells of the window: what their sectors share (the surface's tilt, and the offset of
@@ -297,7 +292,9 @@ SkyViewProducts sky_view_products(const Terrain& terrain, const Window& window, 
   const int w = window.cols, h = window.rows, n = field.directions;
   const bool lower = !field.lower.empty();
   std::vector<unsigned char> leaves(static_cast<std::size_t>(w) * h, 0);
-  const Sectors sectors = sectors_of(field);
+  if (field.sectors.size() != n)
+    throw Error("sky-view products: the field's sectors are not its directions (internal error)");
+  const Sectors sectors(field.sectors);
   // Rows in chunks of cells, each summed over every direction's plane with its sums in the
   // first-level cache: contiguous reads, and nothing kept per cell.
   tbb::parallel_for(0, h, [&](int wr) {
@@ -391,7 +388,9 @@ void SkyViewSums::add(int first, int count, const float* upper, const float* low
   if (first == 0) {
     st.lower = lower != nullptr;
     // The field names its sectors once the engine has set them: they come with the first batch.
-    if (rotations.sectors.size() == st.sectors.n) st.sectors = Sectors(rotations.sectors);
+    if (rotations.sectors.size() != st.sectors.n)
+      throw Error("sky-view sums: the field's sectors are not the directions added (internal error)");
+    st.sectors = Sectors(rotations.sectors);
   }
   if (st.lower != (lower != nullptr))
     throw Error("sky-view sums: lowest angles for some directions only (internal error)");

@@ -39,7 +39,7 @@ struct DirectionSet {
   static DirectionSet grid_lines(int n, const Jacobian& j);
 };
 
-// Direction counts that AzimuthSpacing::grid_lines supports.
-bool grid_lines_support(int directions);
+// Throws skyview::Error unless AzimuthSpacing::grid_lines supports `directions` (4, 8 or 16).
+void check_grid_lines_count(int directions);
 
 }  // namespace skyview

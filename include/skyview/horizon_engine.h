@@ -63,7 +63,8 @@ struct HorizonField {
   std::vector<float> svf_stderr;
 
   // Sizes the planes (NaN everywhere) and clears the per-cell extras; keeps sector_rotation and
-  // sectors, which HorizonEngine::compute sets before the method runs and the method reads.
+  // sectors, which HorizonEngine::compute sets before the method runs and the method reads
+  // (sectors become uniform where their number is not `d`: fields filled by hand).
   void resize(int c, int r, int d, bool with_lower);
   std::size_t cell(int col, int row) const { return static_cast<std::size_t>(row) * cols + col; }
   std::size_t cells() const { return static_cast<std::size_t>(cols) * rows; }
@@ -156,6 +157,7 @@ double direction_set_rotation(AzimuthOrigin origin, const Terrain& terrain);
 // The rotation and the sectors `params` ask for on `terrain`: grid lines start on grid north
 // whatever the origin, and their azimuths follow the raster's centre Jacobian (shared by every
 // tile and block).
+AzimuthOrigin set_origin(const HorizonParams& params);
 double direction_set_rotation(const HorizonParams& params, const Terrain& terrain);
 DirectionSet direction_set(const HorizonParams& params, const Terrain& terrain);
 

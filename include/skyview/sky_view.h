@@ -8,7 +8,7 @@
 //                    with H_k = max(h_k, t_k, 0), t_k the surface plane's own horizon
 //   openness_positive = mean(90° - h_k), openness_negative = mean(90° + lowest angle_k)  (Yokoyama 2002)
 // Where the sectors are uneven (AzimuthSpacing::grid_lines) each sector's term weighs its own share
-// Δ_k / 2π instead of 1/N (HorizonField::sectors): the trapezoid rule over azimuth.
+// Δ_k / 2π instead of 1/N (HorizonField::sectors, DirectionSet::share).
 #include <memory>
 #include <string>
 #include <vector>
@@ -18,6 +18,7 @@
 
 namespace skyview {
 
+// One cell's values from n uniform sectors (the sums over a field read its own sectors).
 double svf_horizontal(const float* horizons, int n);
 double sky_visibility(const float* horizons, int n);
 // slope β (radians) and aspect A (azimuth of steepest descent, radians); `rotation` offsets φ_k.

@@ -14,6 +14,7 @@ void HorizonField::resize(int c, int r, int d, bool with_lower) {
   cols = c;
   rows = r;
   directions = d;
+  if (sectors.size() != d) sectors = DirectionSet::uniform(d);
   const std::size_t n = static_cast<std::size_t>(c) * r * d;
   upper.assign(n, std::numeric_limits<float>::quiet_NaN());
   lower.assign(with_lower ? n : 0, std::numeric_limits<float>::quiet_NaN());
@@ -41,9 +42,12 @@ double direction_set_rotation(AzimuthOrigin origin, const Terrain& terrain) {
   return std::atan2(-j.b, -j.d);
 }
 
+AzimuthOrigin set_origin(const HorizonParams& params) {
+  return params.spacing == AzimuthSpacing::grid_lines ? AzimuthOrigin::grid : params.azimuth_origin;
+}
+
 double direction_set_rotation(const HorizonParams& params, const Terrain& terrain) {
-  const bool grid = params.spacing == AzimuthSpacing::grid_lines || params.azimuth_origin == AzimuthOrigin::grid;
-  return direction_set_rotation(grid ? AzimuthOrigin::grid : AzimuthOrigin::north, terrain);
+  return direction_set_rotation(set_origin(params), terrain);
 }
 
 DirectionSet direction_set(const HorizonParams& params, const Terrain& terrain) {
@@ -110,8 +114,7 @@ std::unique_ptr<HorizonEngine> make_horizon_engine(std::string_view method, cons
   if (params.directions < 1 || params.directions > 4096) throw Error("--directions must be between 1 and 4096");
   if (!(params.radius >= 0.0) || std::isinf(params.radius)) throw Error("--radius must be a positive number of metres");
   if (params.spacing == AzimuthSpacing::grid_lines) {
-    if (!grid_lines_support(params.directions))
-      throw Error("--azimuths grid-lines needs 4, 8 or 16 directions (got " + std::to_string(params.directions) + ")");
+    check_grid_lines_count(params.directions);
     if (method == "sampled")
       throw Error("--azimuths grid-lines needs fixed directions: the sampled method turns each cell's set at random");
   }

@@ -20,6 +20,8 @@
 // diagonals the lines run through cell centres, a cell's own ray is its line, and the issue's
 // design is exact as it stands: each cell is pushed onto its line's hull and its horizon is the
 // tangent found there (no near field, no query; about 2.8x faster per direction at 4000 x 4000).
+// Along half slopes (k = ±1/2, --azimuths grid-lines) lines half a cell apart do the same at
+// twice the pushes (cells_on_lines).
 // With a radius, no hulls: every crossing within it along each cell's own ray (a vectorised march).
 //
 // Memory layout, the cost that matters: lines are walked in bands of kBand neighbouring lines
@@ -91,6 +93,9 @@ struct LineHull {
   // search needs slopes strictly rising up to the tangent: the higher of the two stays.
   // Returns p's tangent point on the hull before it (the point it now lies behind: the pops remove
   // exactly the points under the slope to their farther neighbour); null if none or merged.
+  // Without kCopies the copies and the top that far-field queries read are not kept: lines that
+  // hold every cell (cells_on_lines) are never queried.
+  template <bool kCopies = true>
   const HullPoint* push(const HullPoint& p, double same) {
     if (n > 0 && points[n - 1].t - p.t < same) {
       if (p.z <= points[n - 1].z) return nullptr;
@@ -102,11 +107,15 @@ struct LineHull {
       if ((a.z - p.z) * (b.t - p.t) > (b.z - p.z) * (a.t - p.t)) break;
       --n;
     }
-    if (n > 0) before_last = points[n - 1];
-    if (n == 0) first_t = p.t;
+    if constexpr (kCopies) {
+      if (n > 0) before_last = points[n - 1];
+      if (n == 0) first_t = p.t;
+    }
     points[n++] = p;
-    last = p;
-    top = std::max(top, p.z);
+    if constexpr (kCopies) {
+      last = p;
+      top = std::max(top, p.z);
+    }
     return n >= 2 ? &points[n - 2] : nullptr;
   }
 
@@ -225,7 +234,8 @@ SweepGeometry make_geometry(const Terrain& terrain, const float* transposed, dou
   const double residue = 1e-4 / std::max(1, g.by_rows ? terrain.raster_height() : terrain.raster_width());
   if (std::abs(g.k) < residue) g.k = 0.0;
   if (std::abs(std::abs(g.k) - 1.0) < residue) g.k = std::copysign(1.0, g.k);
-  if (std::abs(std::abs(g.k) - 0.5) < residue) g.k = std::copysign(0.5, g.k);  // half slopes (grid lines)
+  // Half slopes: the grid lines' (1, 2) steps, or a uniform set's 45° on cells twice as long as wide.
+  if (std::abs(std::abs(g.k) - 0.5) < residue) g.k = std::copysign(0.5, g.k);
   g.t_major = g.by_rows ? t_row : t_col;
   g.t_minor = g.by_rows ? t_col : t_row;
   g.toward = (g.by_rows ? pr < 0 : pc < 0) ? -1 : 1;  // the viewer looks towards index 0 when -1
@@ -442,7 +452,9 @@ std::vector<StepLines> step_lines(const SweepGeometry& g) {
   return out;
 }
 
-constexpr int kBand = 256;  // cells' strips per band; the band keeps kBand + 1 hulls
+// Cells' strips per band: a band keeps kBand + 1 hulls, or twice the lines on half slopes
+// (DirectionSweep::band_lines).
+constexpr int kBand = 256;
 
 // Scratch for one step's samples of a band's lines (row crossings and minor grid crossings): the
 // heights as read, then as one walk's hulls hold them.
@@ -465,7 +477,7 @@ struct Walk {
 
 // A walk's state in the band being walked.
 struct WalkState {
-  LineHull* hulls = nullptr;  // kBand + 1, in their own arena
+  LineHull* hulls = nullptr;  // band_lines() + 1, in their own arena
   float* best = nullptr;      // row-sized scratch of slopes
 };
 
@@ -629,7 +641,7 @@ class DirectionSweep {
         const double z = zrow[i] + 0.5 * (static_cast<double>(zrow[i + 1]) - zrow[i]);
         if (std::isnan(z)) continue;  // nodata never occludes
         const double t = t_row + (i + 0.5) * g_.t_minor;
-        hulls[base + 2 * i + 1].push({t, walk.folded(t, z)}, same_);
+        hulls[base + 2 * i + 1].push<false>({t, walk.folded(t, z)}, same_);
       }
       float* best = state[w].best;
       for (int minor = a; minor < b; ++minor) {
@@ -637,7 +649,7 @@ class DirectionSweep {
         if (std::isnan(zc)) continue;  // written as NaN; nodata never occludes
         const double t = t_row + minor * g_.t_minor;
         const HullPoint p{t, walk.folded(t, zc)};
-        const HullPoint* tangent = hulls[base + per * minor].push(p, same_);
+        const HullPoint* tangent = hulls[base + per * minor].push<false>(p, same_);
         best[minor] = tangent ? static_cast<float>((tangent->z - p.z) / (tangent->t - p.t) + 2.0 * walk.c * t)
                               : -std::numeric_limits<float>::infinity();
       }
@@ -830,9 +842,14 @@ class SweepEngine final : public HorizonEngine {
     return {{"METHOD", "sweep"},
             {"DIRECTIONS", std::to_string(p_.directions)},
             {"RADIUS_M", p_.radius > 0 ? number_text(p_.radius) : "unlimited"},
-            {"NEAR_STEPS", p_.radius > 0 ? "all within the radius" : std::to_string(p_.samples)},
-            {"FAR_LINES", p_.radius > 0 ? "none (no hulls within a radius)" : std::to_string(p_.far_lines)}};
+            {"NEAR_STEPS", p_.radius > 0     ? "all within the radius"
+                           : on_grid_lines() ? "none (every direction on the grid's lines: exact)"
+                                             : std::to_string(p_.samples)},
+            {"FAR_LINES", p_.radius > 0     ? "none (no hulls within a radius)"
+                          : on_grid_lines() ? "none (every direction on the grid's lines: exact)"
+                                            : std::to_string(p_.far_lines)}};
   }
+  bool on_grid_lines() const { return p_.spacing == AzimuthSpacing::grid_lines; }
   double curvature_coefficient(const Terrain& terrain) const override {
     const double reach = p_.radius > 0 ? p_.radius : ground_diagonal(terrain);  // unlimited: the whole raster
     return detail::curvature_coefficient(p_, reach, terrain.frame.earth_radius());

@@ -375,6 +375,8 @@ TEST_F(CliErrors, GridLineAzimuthsNameTheirBandsAndRefuseWhatTheyCannotServe) {
   expect_one_line_error(
       run_skyview("horizon " + good + " " + h + " --overwrite --azimuths grid-lines --azimuth-origin north", dir),
       "starts on grid north");
+  expect_one_line_error(run_skyview("svf " + good + " " + s + " --overwrite --azimuths grid-lines --samples 16", dir),
+                        "every direction is exact");
 }
 
 // GDAL's message for a format that cannot hold the bands breaks lines; the error stays one line.

@@ -61,6 +61,23 @@ TEST(BenchReport, NamesRadiiAndRunsFinerThanTheReference) {
   EXPECT_NE(md.find("cont. p99"), std::string::npos) << md;
 }
 
+// The sweep's default grid ends with 16 directions along the grid's lines, named so in the report.
+TEST(BenchReport, TheSweepsGridIncludesGridLineDirections) {
+  const std::vector<BenchConfig> grid = default_bench_grid({"sweep"});
+  ASSERT_FALSE(grid.empty());
+  EXPECT_EQ(grid.back().params.spacing, AzimuthSpacing::grid_lines);
+  EXPECT_EQ(grid.back().params.directions, 16);
+  EXPECT_EQ(grid.back().label(), "sweep d=16 grid lines");
+  const Terrain t = rasterize(circular_pit(5.0, 3.0), 15, 15, local_grid(15, 15, 1.0));
+  const BenchReference ref = compute_reference(t, 16, AzimuthOrigin::grid);
+  std::vector<BenchConfig> configs{grid.back()};
+  configs[0].params.azimuth_origin = AzimuthOrigin::grid;
+  const nlohmann::json j = bench_to_json("pit.tif", ref, run_bench(t, configs, ref, 1, nullptr));
+  EXPECT_EQ(j["results"][0]["azimuths"], "grid-lines");
+  // The pit's rim is a circle: every direction sees about the same horizon, whatever its share.
+  EXPECT_LT(j["results"][0]["svf_continuous"]["p99_abs"].get<double>(), 0.02);
+}
+
 // The front judges by the error against the continuous svf where the bench measured it: against
 // the 64-sector ray cast, 256 directions would look no better than 64 (it is their sector error).
 TEST(BenchReport, ParetoFrontJudgesByTheContinuousErrorWhereMeasured) {

@@ -15,12 +15,12 @@ using namespace skyview::test;
 namespace {
 
 // A grid turned clockwise from north with cells `width` by `height` metres (one Jacobian
-// everywhere).
-GeoReference turned_grid(int cols, int rows, double degrees, double width, double height) {
-  const double turn = degrees * M_PI / 180.0;
+// everywhere); `mirrored`: its rows run north (a bottom-up raster).
+GeoReference turned_grid(int cols, int rows, double degrees, double width, double height, bool mirrored = false) {
+  const double turn = degrees * M_PI / 180.0, row_sign = mirrored ? -1.0 : 1.0;
   GeoReference g = local_grid(cols, rows, 1.0);
-  g.geotransform[1] = width * std::cos(turn), g.geotransform[2] = -height * std::sin(turn);
-  g.geotransform[4] = -width * std::sin(turn), g.geotransform[5] = -height * std::cos(turn);
+  g.geotransform[1] = width * std::cos(turn), g.geotransform[2] = -row_sign * height * std::sin(turn);
+  g.geotransform[4] = -width * std::sin(turn), g.geotransform[5] = -row_sign * height * std::cos(turn);
   return g;
 }
 
@@ -81,6 +81,9 @@ TEST(GridLines, DirectionsFollowThePixelSteps) {
     tall_total += s;
   }
   EXPECT_NEAR(tall_total, 1.0, 1e-12);
+  // A bottom-up raster: its steps turn the other way on the ground, the set is the same.
+  const DirectionSet mirrored = DirectionSet::grid_lines(16, Jacobian{1.0, 0.0, 0.0, 1.0});
+  for (int k = 0; k < 16; ++k) EXPECT_NEAR(mirrored.offset[k], set.offset[k], 1e-12) << k;
   for (int n : {2, 12, 32}) EXPECT_THROW(DirectionSet::grid_lines(n, square), Error) << n;
   HorizonParams p;
   p.spacing = AzimuthSpacing::grid_lines;
@@ -97,9 +100,16 @@ TEST(GridLines, DirectionsFollowThePixelSteps) {
 // under the same settings (one near step) are not: their oblique directions go through a line's
 // tangent, so the test can tell whether the half slopes took the exact path.
 TEST(GridLines, TheSweepIsTheMarchOnEveryDirection) {
-  for (const auto& [turn, height] : {std::pair{20.0, 1.0}, std::pair{0.0, 2.0}, std::pair{-35.0, 0.7}}) {
-    SCOPED_TRACE(::testing::Message() << "turned " << turn << "°, cells 1 x " << height << " m");
-    Terrain t = rasterize(synthetic_city(3), 161, 141, turned_grid(161, 141, turn, 1.0, height));
+  struct Grid {
+    double turn, height;
+    bool mirrored;
+  };
+  for (const Grid& grid :
+       {Grid{20.0, 1.0, false}, Grid{0.0, 2.0, false}, Grid{-35.0, 0.7, false}, Grid{10, 1.0, true}}) {
+    SCOPED_TRACE(::testing::Message() << "turned " << grid.turn << "°, cells 1 x " << grid.height << " m"
+                                      << (grid.mirrored ? ", rows running north" : ""));
+    Terrain t =
+        rasterize(synthetic_city(3), 161, 141, turned_grid(161, 141, grid.turn, 1.0, grid.height, grid.mirrored));
     for (int r = 60; r < 70; ++r) t.heights(40, r) = std::numeric_limits<float>::quiet_NaN();
     HorizonParams p;
     p.directions = 16;
@@ -136,6 +146,40 @@ TEST(GridLines, TheSweepIsTheMarchOnEveryDirection) {
     exact.spacing = AzimuthSpacing::uniform;
     p.azimuth_origin = exact.azimuth_origin = AzimuthOrigin::grid;
     EXPECT_GT(field_difference(run(t, "sweep", p), run(t, "march", exact)).worst, 1e-3) << "radians";
+  }
+}
+
+// A raster wide enough for several bands of half-slope lines (512 lines each) both ways: the
+// sweep's horizons on a row and on a column across every band boundary are the exact march's.
+TEST(GridLines, BandsOfHalfSlopeLinesMeetExactly) {
+  const int cols = 900, rows = 700;
+  Terrain t = rasterize(synthetic_city(5), cols, rows, local_grid(cols, rows, 1.0));
+  for (int c = 300; c < 320; ++c) t.heights(c, 333) = std::numeric_limits<float>::quiet_NaN();
+  HorizonParams p;
+  p.directions = 16;
+  p.spacing = AzimuthSpacing::grid_lines;
+  p.curvature = "off";
+  const HorizonField sweep = run(t, "sweep", p);
+  HorizonParams exact = p;
+  exact.radius = 1e6;
+  for (const Window& w : {Window{0, 333, cols, 2}, Window{451, 0, 2, rows}}) {
+    const HorizonField march = run(t, "march", exact, w);
+    double worst = 0.0;
+    std::size_t compared = 0;
+    for (int k = 0; k < 16; ++k) {
+      for (int r = 0; r < w.rows; ++r) {
+        for (int c = 0; c < w.cols; ++c) {
+          const float a = sweep.upper_at(sweep.cell(w.col0 + c, w.row0 + r), k),
+                      b = march.upper_at(march.cell(c, r), k);
+          ASSERT_EQ(std::isnan(a), std::isnan(b));
+          if (std::isnan(b)) continue;
+          worst = std::max(worst, std::abs(double(a) - b));
+          ++compared;
+        }
+      }
+    }
+    EXPECT_LT(worst, 1e-5) << "radians, window at " << w.col0 << "," << w.row0;
+    EXPECT_GT(compared, 16u * 1000u);
   }
 }
 
