@@ -944,16 +944,19 @@ class SweepEngine final : public HorizonEngine {
     for (int k = 0; k < p_.directions; ++k) in.azimuth.push_back(field.set_azimuth(k));
     const int W = terrain.width(), H = terrain.height();
     in.transposed = allocate_large<float>(static_cast<std::size_t>(W) * H);
-    // In tiles, so that both the reads and the writes stay within cache lines already loaded.
+    // In tiles, so that both the reads and the writes stay within cache lines already loaded; bands
+    // of columns in parallel (each writes its own rows of the copy), which no direction can start
+    // without (about 0.1 s of one core at 4000 x 4000).
     constexpr int kTile = 64;
-    for (int r0 = 0; r0 < H; r0 += kTile) {
-      for (int c0 = 0; c0 < W; c0 += kTile) {
+    tbb::parallel_for(0, (W + kTile - 1) / kTile, [&](int tile) {
+      const int c0 = tile * kTile;
+      for (int r0 = 0; r0 < H; r0 += kTile) {
         for (int col = c0; col < std::min(W, c0 + kTile); ++col) {
           for (int r = r0; r < std::min(H, r0 + kTile); ++r)
             in.transposed[static_cast<std::size_t>(col) * H + r] = terrain.heights(col, r);
         }
       }
-    }
+    });
     return in;
   }
   void sweep(const Terrain& terrain, const Inputs& in, const Window& window, int k, BandScratches& scratches,
