@@ -23,7 +23,8 @@ const std::vector<CalibrationEntry>& calibration_table() {
     std::vector<CalibrationEntry> table = measured;
     for (CalibrationEntry& e : table) {
       for (const CalibrationEntry& m : measured) {
-        if (m.method == e.method && m.directions == e.directions && m.far_lines == e.far_lines && m.samples > e.samples)
+        if (m.method == e.method && m.directions == e.directions && m.far_lines == e.far_lines &&
+            m.spacing == e.spacing && m.samples > e.samples)
           e.worst_p99 = std::max(e.worst_p99, m.worst_p99);
       }
     }
@@ -42,6 +43,7 @@ AccuracyChoice choice_of(const CalibrationEntry& e, const HorizonParams& base) {
   c.params.directions = e.directions;
   c.params.samples = e.samples;
   if (e.far_lines > 0) c.params.far_lines = e.far_lines;
+  c.params.spacing = e.spacing;
   c.params.radius = 0.0;  // each method's calibrated default
   return c;
 }

@@ -281,15 +281,17 @@ void plot_bench(const std::string& png_path, const std::string& title, const std
   const bool continuous = std::any_of(results.begin(), results.end(), [](auto& r) { return r.has_continuous(); });
   cv::putText(img, continuous ? "p99 |svf - continuous svf|" : "p99 |svf error|", cv::Point(5, top - 10),
               cv::FONT_HERSHEY_SIMPLEX, 0.5, black);
-  // One series per method, and the sweep's two far-line variants apart: each makes its own front.
+  // One series per method, and the sweep's far-line variants and its grid-line directions apart.
   auto series = [](const BenchConfig& c) {
     if (c.method != "sweep") return c.method;
+    if (c.params.spacing == AzimuthSpacing::grid_lines) return std::string("sweep, grid lines");
     return std::string(c.params.far_lines == 1 ? "sweep, 1 far line" : "sweep, 2 far lines");
   };
   const std::map<std::string, cv::Scalar> colour{{"sampled", cv::Scalar(40, 120, 230)},
                                                  {"march", cv::Scalar(60, 170, 60)},
                                                  {"sweep, 2 far lines", cv::Scalar(200, 60, 60)},
-                                                 {"sweep, 1 far line", cv::Scalar(200, 60, 200)}};
+                                                 {"sweep, 1 far line", cv::Scalar(200, 60, 200)},
+                                                 {"sweep, grid lines", cv::Scalar(20, 20, 20)}};
   std::vector<const BenchResult*> front;
   for (const auto& r : results) {
     if (r.pareto) front.push_back(&r);

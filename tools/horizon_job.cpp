@@ -149,6 +149,17 @@ void record_method(HorizonJob& job, double max_error) {
   add["CURVATURE"] = std::string(curved ? "on" : "off") + (job.engine->params().curvature == "auto" ? " (auto)" : "") +
                      (job.engine->name() == "raycast" ? " (the ray cast has none)" : "");
   if (curved) add["REFRACTION"] = number_text(job.engine->params().refraction);
+  // The directions too: --max-error's next choice may run along the grid's lines or not.
+  job.sector_rotation = direction_set_rotation(job.engine->params(), job.terrain);
+  job.sectors = direction_set(job.engine->params(), job.terrain);
+  const bool grid = set_origin(job.engine->params()) == AzimuthOrigin::grid;
+  add["AZIMUTH_ORIGIN"] =
+      grid ? "grid: sector 0 centred on grid north at the raster's centre" : "north: sector 0 centred on true north";
+  add["AZIMUTHS"] = job.engine->params().spacing == AzimuthSpacing::grid_lines
+                        ? "grid-lines: along the grid's columns, rows, diagonals and slope-1/2 lines, each weighted by "
+                          "its share of the circle (band metadata SECTOR_WIDTH_DEG in skyview horizon)"
+                        : "uniform: every 360/N degrees";
+  add["SECTOR_ROTATION_DEG"] = number_text(job.sector_rotation * 180.0 / M_PI);
   if (job.choice) {
     add["MAX_ERROR_REQUESTED"] = number_text(max_error);
     add["MAX_ERROR_CHOICE"] = describe_choice(*job.choice);
@@ -167,6 +178,8 @@ void record_method(HorizonJob& job, double max_error) {
 }  // namespace
 
 std::string describe_choice(const AccuracyChoice& c) {
+  if (c.entry.spacing == AzimuthSpacing::grid_lines)
+    return c.method + " with " + std::to_string(c.entry.directions) + " directions along the grid's lines";
   return c.method + " with " + std::to_string(c.entry.directions) + " directions" +
          (c.method == "sampled" ? " and " + std::to_string(c.entry.samples) + " samples" : "") +
          (c.method == "sweep"
@@ -240,16 +253,6 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   record_method(job, o.max_error);
   m["NODATA_POLICY"] = "nodata cells give nodata; nodata inside a search path does not occlude";
   m["ANGLE_CONVENTION"] = "elevation above the horizontal; azimuth clockwise from true north";
-  job.sector_rotation = direction_set_rotation(job.engine->params(), job.terrain);
-  job.sectors = direction_set(job.engine->params(), job.terrain);
-  const bool grid = set_origin(job.engine->params()) == AzimuthOrigin::grid;
-  m["AZIMUTH_ORIGIN"] =
-      grid ? "grid: sector 0 centred on grid north at the raster's centre" : "north: sector 0 centred on true north";
-  m["AZIMUTHS"] = job.engine->params().spacing == AzimuthSpacing::grid_lines
-                      ? "grid-lines: along the grid's columns, rows, diagonals and slope-1/2 lines, each weighted by "
-                        "its share of the circle (band metadata SECTOR_WIDTH_DEG in skyview horizon)"
-                      : "uniform: every 360/N degrees";
-  m["SECTOR_ROTATION_DEG"] = number_text(job.sector_rotation * 180.0 / M_PI);
   return job;
 }
 

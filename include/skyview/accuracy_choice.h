@@ -22,6 +22,7 @@ struct CalibrationEntry {
   double worst_p99 = 0;    // worst 99th-percentile |svf - continuous svf| over the calibration rasters, and
                            // over the entries with more samples (calibration_table)
   double ns_per_cell = 0;  // median cost on 2 cores, for ordering
+  AzimuthSpacing spacing = AzimuthSpacing::uniform;  // grid_lines: the sweep's 16 exact directions
 };
 
 const std::vector<CalibrationEntry>& calibration_table();

@@ -24,12 +24,29 @@ TEST(AccuracyChoice, PicksTheCheapestEntryWithinTheRequest) {
     // The entry's method and parameters are what runs; the rest of the user's parameters stay.
     EXPECT_EQ(c.params.directions, c.entry.directions);
     EXPECT_EQ(c.params.samples, c.entry.samples);
+    EXPECT_EQ(c.params.spacing, c.entry.spacing);
     EXPECT_EQ(c.params.radius, 0.0);  // the method's calibrated default
     EXPECT_EQ(c.params.curvature, "off");
     EXPECT_NO_THROW(make_horizon_engine(c.method, c.params));
   }
   // A looser request never costs more.
   EXPECT_LE(choose_for_max_error(0.05, base).entry.ns_per_cell, choose_for_max_error(0.005, base).entry.ns_per_cell);
+}
+
+// 16 directions along the grid's lines are calibrated between 8 and 16 uniform ones (Dec 4: p99
+// 0.070 at about 0.85 of the uniform 16's cost): a request there runs along the grid's lines, and
+// when the raster turns out harder, the next run goes back to uniform sectors, at least as many.
+TEST(AccuracyChoice, GridLinesFillTheStepBetweenEightAndSixteenDirections) {
+  const AccuracyChoice c = choose_for_max_error(0.1, HorizonParams{});
+  EXPECT_EQ(c.method, "sweep");
+  EXPECT_EQ(c.params.spacing, AzimuthSpacing::grid_lines);
+  EXPECT_EQ(c.params.directions, 16);
+  EXPECT_NO_THROW(make_horizon_engine(c.method, c.params));
+  const auto next = choose_after_measurement(0.1, c.entry, 0.12, HorizonParams{});
+  ASSERT_TRUE(next.has_value());
+  EXPECT_EQ(next->params.spacing, AzimuthSpacing::uniform);
+  EXPECT_GE(next->params.directions, 16);
+  EXPECT_LT(next->entry.worst_p99, c.entry.worst_p99);
 }
 
 // More exact near steps (or samples) along the same directions never cost accuracy: the table
