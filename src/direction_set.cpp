@@ -59,6 +59,14 @@ std::vector<double> harmonic_shares(const std::vector<double>& offset) {
 }
 }  // namespace
 
+const char* azimuth_origin_name(AzimuthOrigin origin) { return origin == AzimuthOrigin::grid ? "grid" : "north"; }
+
+AzimuthOrigin azimuth_origin_named(std::string_view name) {
+  if (name == "north") return AzimuthOrigin::north;
+  if (name == "grid") return AzimuthOrigin::grid;
+  throw Error("unknown azimuth origin '" + std::string(name) + "' (north, grid)");
+}
+
 const char* azimuth_spacing_name(AzimuthSpacing spacing) {
   return spacing == AzimuthSpacing::grid_lines ? "grid-lines" : "uniform";
 }
@@ -80,7 +88,7 @@ DirectionSet DirectionSet::uniform(int n) {
   DirectionSet set;
   set.offset.resize(static_cast<std::size_t>(n));
   set.share.assign(static_cast<std::size_t>(n), 1.0 / n);
-  for (int k = 0; k < n; ++k) set.offset[static_cast<std::size_t>(k)] = kTwoPi * k / n;
+  for (int k = 0; k < n; ++k) set.offset[static_cast<std::size_t>(k)] = sector_azimuth(k, n);
   return set;
 }
 

@@ -43,21 +43,20 @@ inline void sincos_quarter(double x, double& s, double& c) {
 }
 
 // The sector azimuths' cosines and sines and the sectors' weights, shared by every cell. Sums
-// over sectors weigh each by `weight` (n times its share: exactly 1 for uniform sectors, so that
-// their sums keep their bits) and are divided by n at the end.
+// over sectors weigh each by `weight` (n times its share Δ_k / 2π: exactly 1 for uniform sectors,
+// so that their sums keep their bits) and are divided by n at the end.
 struct Sectors {
   int n;
   std::vector<double> weight;  // n Δ_k / 2π
-  std::vector<double> share;   // Δ_k / 2π
   std::vector<double> half;    // sin(Δ_k / 2)
   std::vector<double> cos_phi, sin_phi;
   explicit Sectors(const DirectionSet& set)
-      : n(set.size()), weight(n, 1.0), share(n, 1.0 / n), half(n, std::sin(kPi / n)), cos_phi(n), sin_phi(n) {
+      : n(set.size()), weight(n, 1.0), half(n, std::sin(kPi / n)), cos_phi(n), sin_phi(n) {
     const bool uniform = set.is_uniform();
     for (int k = 0; k < n; ++k) {
       cos_phi[k] = std::cos(set.offset[k]);
       sin_phi[k] = std::sin(set.offset[k]);
-      if (!uniform) weight[k] = n * set.share[k], share[k] = set.share[k], half[k] = std::sin(kPi * set.share[k]);
+      if (!uniform) weight[k] = n * set.share[k], half[k] = std::sin(kPi * set.share[k]);
     }
   }
   explicit Sectors(int n) : Sectors(DirectionSet::uniform(n)) {}
@@ -95,8 +94,8 @@ template <bool kTilted>
 __attribute__((always_inline)) inline void sector_sums(SkySums& sums, const Sectors& s, int k, const float* h,
                                                        int count) {
   constexpr double kInvPi = 1.0 / kPi, kDegrees = 180.0 / kPi;
-  const double cos_phi = s.cos_phi[k], sin_phi = s.sin_phi[k], share = s.share[k], half = s.half[k];
-  const double weight = s.weight[k];
+  const double cos_phi = s.cos_phi[k], sin_phi = s.sin_phi[k], half = s.half[k];
+  const double weight = s.weight[k], share = weight / s.n;
   for (int i = 0; i < count; ++i) {
     const double hk = h[i];
     const double above = hk > 0.0 ? hk : 0.0;

@@ -47,10 +47,10 @@ Runner setup(CLI::App& app) {
     if (!job.engine->streams_directions()) wo.rows_at_once = rows_in_budget(*job.engine, w, kHorizonBlockBytes);
     BandWriter out(o->output, w, h, n, job.terrain.georef, wo);
     const double rotation = job.sector_rotation * 180.0 / M_PI;
+    const bool uniform = job.sectors.is_uniform();  // named by 360 k / N, as before grid lines
     for (int k = 0; k < n; ++k) {
       // In [0, 360) to ten significant digits: a set turned by -0.0001° starts at 359.9998961, and
       // a residue that rounds to 360 reads 0.
-      const bool uniform = job.sectors.is_uniform();
       const double offset = uniform ? 360.0 * k / n : job.sectors.offset[static_cast<std::size_t>(k)] * 180.0 / M_PI;
       double azimuth = std::fmod(offset + rotation, 360.0);
       if (azimuth < 0.0) azimuth += 360.0;

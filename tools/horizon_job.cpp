@@ -152,7 +152,7 @@ void record_method(HorizonJob& job, double max_error) {
   // The directions too: --max-error's next choice may run along the grid's lines or not.
   job.sector_rotation = direction_set_rotation(job.engine->params(), job.terrain);
   job.sectors = direction_set(job.engine->params(), job.terrain);
-  const bool grid = set_origin(job.engine->params()) == AzimuthOrigin::grid;
+  const bool grid = direction_set_origin(job.engine->params()) == AzimuthOrigin::grid;
   add["AZIMUTH_ORIGIN"] =
       grid ? "grid: sector 0 centred on grid north at the raster's centre" : "north: sector 0 centred on true north";
   add["AZIMUTHS"] = job.engine->params().spacing == AzimuthSpacing::grid_lines

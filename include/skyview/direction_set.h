@@ -6,13 +6,25 @@
 // the sweep finds each horizon exactly when it pushes the cell, with no near field and no search
 // (docs/sky_view.md). Those directions are unevenly spaced (on square cells 26.57° apart around
 // an axis, 18.43° around a diagonal), so each has its own weight: the shares that integrate the
-// low harmonics of azimuth exactly (src/direction_set.cpp).
+// low harmonics of azimuth exactly (src/direction_set.cpp). Where a set starts is its origin.
 #include <string_view>
 #include <vector>
 
 #include "skyview/ground_frame.h"
 
 namespace skyview {
+
+// Where the direction set's first sector points. `north`: true north, so sector k is centred on
+// azimuth 360 k / N. `grid`: up the raster's columns at its centre (grid north; a UTM raster's is
+// off true north by the meridian convergence), so that the sectors at multiples of 45° run along
+// its columns, rows and (square cells) diagonals, where the sweep's lines pass through cell
+// centres and it finds the horizons exactly and about 2.8 times faster (docs/benchmarks.md). Products summed over
+// azimuth (svf, sky visibility, openness) do not depend on the choice beyond the sectors' own error.
+enum class AzimuthOrigin { north, grid };
+// "north" or "grid", as --azimuth-origin and the outputs' metadata spell it; the parser throws
+// skyview::Error for any other name.
+const char* azimuth_origin_name(AzimuthOrigin origin);
+AzimuthOrigin azimuth_origin_named(std::string_view name);
 
 // How the directions are spread: `uniform` (2πk/N from the set's rotation) or `grid_lines`
 // (4, 8 or 16 digital lines of the grid, from grid north).
@@ -21,6 +33,10 @@ enum class AzimuthSpacing { uniform, grid_lines };
 // skyview::Error for any other name.
 const char* azimuth_spacing_name(AzimuthSpacing spacing);
 AzimuthSpacing azimuth_spacing_named(std::string_view name);
+
+// Azimuth of sector k's centre in N uniform sectors (radians, clockwise from the set's origin;
+// DirectionSet::uniform).
+inline double sector_azimuth(int k, int directions) { return 2.0 * 3.14159265358979323846 * k / directions; }
 
 struct DirectionSet {
   // Sector k's azimuth from the set's rotation (radians, clockwise), rising from 0 below 2π.

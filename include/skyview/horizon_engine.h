@@ -17,18 +17,6 @@
 
 namespace skyview {
 
-// Where the direction set's first sector points. `north`: true north, so sector k is centred on
-// azimuth 360 k / N. `grid`: up the raster's columns at its centre (grid north; a UTM raster's is
-// off true north by the meridian convergence), so that the sectors at multiples of 45° run along
-// its columns, rows and (square cells) diagonals, where the sweep's lines pass through cell
-// centres and it finds the horizons exactly and about 2.8 times faster (docs/benchmarks.md). Products summed over
-// azimuth (svf, sky visibility, openness) do not depend on the choice beyond the sectors' own error.
-enum class AzimuthOrigin { north, grid };
-// "north" or "grid", as --azimuth-origin and the outputs' metadata spell it; the parser throws
-// skyview::Error for any other name.
-const char* azimuth_origin_name(AzimuthOrigin origin);
-AzimuthOrigin azimuth_origin_named(std::string_view name);
-
 struct HorizonParams {
   int directions = 16;             // azimuth sectors, clockwise from the first (azimuth_origin)
   int samples = 0;                 // per direction: samples (sampled, default 16), exact near
@@ -146,10 +134,6 @@ std::vector<std::string> horizon_method_names();
 // Throws skyview::Error for an unknown name or invalid parameters.
 std::unique_ptr<HorizonEngine> make_horizon_engine(std::string_view method, const HorizonParams& params);
 
-// Azimuth of sector k's centre (radians, clockwise from north) in a set whose first sector points
-// north; a rotated set adds its rotation.
-inline double sector_azimuth(int k, int directions) { return 2.0 * 3.14159265358979323846 * k / directions; }
-
 // The direction set's rotation on `terrain` (radians, clockwise from north): 0 for
 // AzimuthOrigin::north, the azimuth of grid north at the raster's centre for AzimuthOrigin::grid.
 // The same for every tile and block of a raster.
@@ -157,7 +141,7 @@ double direction_set_rotation(AzimuthOrigin origin, const Terrain& terrain);
 // The rotation and the sectors `params` ask for on `terrain`: grid lines start on grid north
 // whatever the origin, and their azimuths follow the raster's centre Jacobian (shared by every
 // tile and block).
-AzimuthOrigin set_origin(const HorizonParams& params);
+AzimuthOrigin direction_set_origin(const HorizonParams& params);
 double direction_set_rotation(const HorizonParams& params, const Terrain& terrain);
 DirectionSet direction_set(const HorizonParams& params, const Terrain& terrain);
 

@@ -27,14 +27,6 @@ double HorizonField::azimuth(std::size_t cell, int k) const {
   return sectors.offset[static_cast<std::size_t>(k)] + cell_rotation(cell);
 }
 
-const char* azimuth_origin_name(AzimuthOrigin origin) { return origin == AzimuthOrigin::grid ? "grid" : "north"; }
-
-AzimuthOrigin azimuth_origin_named(std::string_view name) {
-  if (name == "north") return AzimuthOrigin::north;
-  if (name == "grid") return AzimuthOrigin::grid;
-  throw Error("unknown azimuth origin '" + std::string(name) + "' (north, grid)");
-}
-
 double direction_set_rotation(AzimuthOrigin origin, const Terrain& terrain) {
   if (origin == AzimuthOrigin::north) return 0.0;
   // One row up (drow = -1) moves east by -b and north by -d.
@@ -42,12 +34,12 @@ double direction_set_rotation(AzimuthOrigin origin, const Terrain& terrain) {
   return std::atan2(-j.b, -j.d);
 }
 
-AzimuthOrigin set_origin(const HorizonParams& params) {
+AzimuthOrigin direction_set_origin(const HorizonParams& params) {
   return params.spacing == AzimuthSpacing::grid_lines ? AzimuthOrigin::grid : params.azimuth_origin;
 }
 
 double direction_set_rotation(const HorizonParams& params, const Terrain& terrain) {
-  return direction_set_rotation(set_origin(params), terrain);
+  return direction_set_rotation(direction_set_origin(params), terrain);
 }
 
 DirectionSet direction_set(const HorizonParams& params, const Terrain& terrain) {
@@ -60,21 +52,28 @@ double HorizonEngine::curvature_coefficient(const Terrain& terrain) const {
   return detail::curvature_coefficient(params(), radius(), terrain.frame.earth_radius());
 }
 
+namespace {
+// The buffer every method runs on (`inner`: the window in it), and `out`'s direction set there.
+Terrain prepare_field(const HorizonParams& params, const Terrain& terrain, const Window& window, Window& inner,
+                      HorizonField& out) {
+  Terrain extended = extend_at_raster_edges(terrain, window, inner);
+  out.sector_rotation = direction_set_rotation(params, extended);
+  out.sectors = direction_set(params, extended);
+  return extended;
+}
+}  // namespace
+
 void HorizonEngine::compute(const Terrain& terrain, const Window& window, HorizonField& out,
                             ProgressCounter& progress) const {
   Window inner;
-  const Terrain extended = extend_at_raster_edges(terrain, window, inner);
-  out.sector_rotation = direction_set_rotation(params(), extended);
-  out.sectors = direction_set(params(), extended);
+  const Terrain extended = prepare_field(params(), terrain, window, inner, out);
   compute_window(extended, inner, out, progress);
 }
 
 void HorizonEngine::compute_directions(const Terrain& terrain, const Window& window, HorizonField& out,
                                        ProgressCounter& progress, const DirectionBatchSink& take) const {
   Window inner;
-  const Terrain extended = extend_at_raster_edges(terrain, window, inner);
-  out.sector_rotation = direction_set_rotation(params(), extended);
-  out.sectors = direction_set(params(), extended);
+  const Terrain extended = prepare_field(params(), terrain, window, inner, out);
   compute_window_directions(extended, inner, out, progress, take);
 }
 
