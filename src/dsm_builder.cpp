@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "skyview/error.h"
+#include "skyview/height_unit.h"
 #include "skyview/number_text.h"
 #include "skyview/point_cloud.h"
 #include "skyview/point_filters.h"
@@ -232,6 +233,7 @@ DsmResult build_dsm(const DsmOptions& o) {
   // Terrain: every DEM warped bilinearly onto the grid (later DEMs fill where earlier are nodata).
   for (const auto& d : o.dems) {
     auto src = open_raster(d);
+    const double z_scale = height_unit(*src->GetRasterBand(1), src->GetSpatialRef(), o.z_scale, d).metres;
     GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
     GDALDatasetUniquePtr dst(mem->Create("", width, height, 1, GDT_Float32, nullptr));
     double gt[6] = {x0, res, 0, y1, 0, -res};
@@ -253,7 +255,7 @@ DsmResult build_dsm(const DsmOptions& o) {
     }
     for (std::size_t i = 0; i < v.size(); ++i) {
       if (std::isnan(terrain.values()[i]) && v[i] > -1e38 && std::isfinite(v[i])) {
-        terrain.values()[i] = static_cast<float>(v[i] * o.z_scale);
+        terrain.values()[i] = static_cast<float>(v[i] * z_scale);
       }
     }
   }

@@ -20,6 +20,7 @@
 
 #include "netcdf_names.h"
 #include "skyview/error.h"
+#include "skyview/height_unit.h"
 
 namespace skyview {
 
@@ -173,8 +174,10 @@ RasterBand read_band(const std::string& path, int band_index) {
 }
 
 Terrain read_terrain(const std::string& path, const ReadOptions& options, ReadReport* report) {
-  if (!(options.z_scale > 0.0) || !std::isfinite(options.z_scale)) throw Error("--z-scale must be a positive number");
+  if (!(options.z_scale >= 0.0) || !std::isfinite(options.z_scale)) throw Error("--z-scale must be a positive number");
   RawBand raw = read_raw_band(path, options.band);
+  const HeightUnit unit =
+      height_unit(*raw.ds->GetRasterBand(options.band), raw.ds->GetSpatialRef(), options.z_scale, path);
   const int width = raw.width, height = raw.height;
   if (static_cast<std::int64_t>(width) * height < 2) {
     throw Error("'" + path + "' has a single cell: a horizon needs at least two cells");
@@ -187,6 +190,8 @@ Terrain read_terrain(const std::string& path, const ReadOptions& options, ReadRe
   ReadReport rep;
   rep.has_nodata_value = has_nodata != 0;
   rep.nodata_value = nodata;
+  rep.z_scale = unit.metres;
+  rep.height_unit = unit.source;
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (std::size_t i = 0; i < values.size(); ++i) {
     double& v = values[i];
@@ -210,7 +215,7 @@ Terrain read_terrain(const std::string& path, const ReadOptions& options, ReadRe
       throw Error("'" + path + "' holds an infinite height at cell (" + std::to_string(i % width) + ", " +
                   std::to_string(i / width) + "); set it to the nodata value");
     }
-    v *= options.z_scale;
+    v *= unit.metres;
     lo = std::min(lo, v);
     hi = std::max(hi, v);
   }

@@ -26,7 +26,7 @@ Runner setup(CLI::App& app) {
   struct Options {
     std::string input, methods = "sampled,march,sweep", out = "bench-out", azimuth_origin = "grid";
     int band = 1, reference_directions = 64, repeat = 3;
-    double z_scale = 1.0;
+    double z_scale = 0.0;  // 0: from the raster
     bool overwrite = false, quiet = false;
     int threads = 0;
   };
@@ -48,7 +48,11 @@ Runner setup(CLI::App& app) {
       ->check(CLI::IsMember({"north", "grid"}))
       ->capture_default_str();
   app.add_option("-b,--band", o->band, "Input band")->capture_default_str();
-  app.add_option("--z-scale", o->z_scale, "Vertical unit factor to metres")->capture_default_str();
+  app.add_option(
+         "--z-scale", o->z_scale,
+         "Metres per height unit (0.3048 for feet); default: the band's unit or vertical CRS, else metres if the "
+         "CRS is in metres or degrees")
+      ->check(positive_number());
   app.add_flag("--overwrite", o->overwrite, "Replace existing result files");
   app.add_flag("-q,--quiet", o->quiet, "No per-configuration lines on stderr");
   app.add_option("--threads", o->threads, "Worker threads (0 = all cores)")->check(non_negative_number());

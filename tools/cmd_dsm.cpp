@@ -65,9 +65,10 @@ Runner setup(CLI::App& app) {
                  "cells farther than this from any height stay nodata")
       ->check(positive_number())
       ->capture_default_str();
-  app.add_option("--z-scale", o->dsm.z_scale, "Vertical unit factor of the DEMs to metres")
-      ->check(positive_number())
-      ->capture_default_str();
+  app.add_option("--z-scale", o->dsm.z_scale,
+                 "Metres per DEM height unit (0.3048 for feet); default: each DEM's band unit or vertical CRS, else "
+                 "metres if its CRS is in metres or degrees")
+      ->check(positive_number());
   app.add_option("--dtm", o->dtm, "Also write the terrain here: the warped DEMs, else the clouds' bare earth");
   add_output_options(app, o->out);
   app.footer(

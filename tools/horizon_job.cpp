@@ -19,7 +19,11 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
   app.add_option("input", o.input, "Input elevation raster (any GDAL format)")->required();
   app.add_option("output", o.output, "Output raster")->required();
   app.add_option("-b,--band", o.band, "Input band")->capture_default_str();
-  app.add_option("--z-scale", o.z_scale, "Vertical unit factor to metres (0.3048 for feet)")->capture_default_str();
+  app.add_option(
+         "--z-scale", o.z_scale,
+         "Metres per height unit (0.3048 for feet); default: the band's unit or vertical CRS, else metres if the "
+         "CRS is in metres or degrees")
+      ->check(positive_number());
   app.add_option(
          "--method", o.method,
          "Horizon method: sweep (hull sweep, unlimited radius or --radius), march, sampled, raycast (Embree reference)")
@@ -237,7 +241,8 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   m["SKYVIEW_PRODUCT"] = command;
   m["SOURCE"] = o.input;
   m["SOURCE_BAND"] = std::to_string(o.band);
-  m["Z_SCALE"] = number_text(o.z_scale);
+  m["Z_SCALE"] = number_text(report.z_scale);
+  m["HEIGHT_UNIT"] = report.height_unit;
   check_edge_leaves_cells(job, params.radius);
   // Auto decides only now, on the raster's reach: a refraction given for rasters where curvature
   // counts is accepted, but said to be unused here (even under -q: the user asked for it).

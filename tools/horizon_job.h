@@ -19,7 +19,7 @@ namespace skyview::cli {
 struct HorizonJobOptions {
   std::string input, output;
   int band = 1;
-  double z_scale = 1.0;
+  double z_scale = 0.0;          // 0: from the raster (height_unit.h)
   std::string method = "sweep";  // exact and the fastest for a given error (docs/benchmarks.md)
   std::string edge = "open";
   double max_error = -1.0;  // >= 0: choose method and parameters for this p99 svf error

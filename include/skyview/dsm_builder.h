@@ -36,7 +36,7 @@ struct DsmOptions {
   double denoise_sigma = 3.0;   // standard deviations
   bool fill = false;            // close nodata holes (GDALFillNodata)
   double fill_distance = 20.0;  // cells
-  double z_scale = 1.0;         // applied to DEM heights
+  double z_scale = 0.0;         // metres per DEM height unit; 0: from each DEM (height_unit.h)
   bool want_dtm = false;        // also the terrain: the DEMs, else the clouds' bare earth
 };
 

@@ -17,7 +17,8 @@ void init_gdal();
 
 struct ReadOptions {
   int band = 1;
-  double z_scale = 1.0;  // vertical unit factor to metres (0.3048006096 for US survey feet)
+  // Metres per height unit (0.3048006096 for US survey feet); 0: from the file (height_unit.h).
+  double z_scale = 0.0;
   // Undeclared NaN cells count as nodata (with a warning) instead of an error.
   bool nan_is_nodata = true;
 };
@@ -27,6 +28,8 @@ struct ReadReport {
   std::int64_t undeclared_nan_cells = 0;  // NaN where the band declares another nodata value
   bool has_nodata_value = false;
   double nodata_value = 0.0;
+  double z_scale = 1.0;     // the metres per height unit applied
+  std::string height_unit;  // what gave it (HeightUnit::source)
 };
 
 // Loads one band as a Terrain. Throws skyview::Error (one line, naming the file) for a

@@ -136,6 +136,9 @@ class CompareCli : public ::testing::Test {
   void write(const std::string& path, const Grid<float>& g, const GeoReference* other = nullptr) const {
     write_bands(path, g.width(), g.height(), other ? *other : georef, {{"svf", "1", g.data(), {}}}, {});
   }
+  void write_dem(const std::string& path, const Grid<float>& g) const {
+    write_bands(path, g.width(), g.height(), georef, {{"height", "m", g.data(), {}}}, {});
+  }
   RunResult run(const std::string& args) const {
     const std::string err_file = dir + "/stderr.txt";
     const int status =
@@ -177,7 +180,7 @@ TEST_F(CompareCli, ScaleAndOffsetApplyToTheJudgedRaster) {
 TEST_F(CompareCli, MaxSlopeLeavesOutSteepCells) {
   Grid<float> dem(12, 10, 0.0f);
   for (int row = 0; row < 10; ++row) dem(5, row) = 10.0f;
-  write(dir + "/dem.tif", dem);
+  write_dem(dir + "/dem.tif", dem);
   const nlohmann::json all = stats(dir + "/value.tif " + dir + "/reference.tif");
   const nlohmann::json flat =
       stats(dir + "/value.tif " + dir + "/reference.tif --dem " + dir + "/dem.tif --max-slope 5");
@@ -194,7 +197,7 @@ TEST_F(CompareCli, MaxSlopeLeavesOutSteepCells) {
 TEST_F(CompareCli, MaxSlopeCountsOnlyCellsValidInBoth) {
   Grid<float> dem(12, 10, 0.0f);
   for (int row = 0; row < 10; ++row) dem(10, row) = 10.0f;
-  write(dir + "/dem.tif", dem);
+  write_dem(dir + "/dem.tif", dem);
   const nlohmann::json flat =
       stats(dir + "/value.tif " + dir + "/reference.tif --dem " + dir + "/dem.tif --max-slope 5");
   EXPECT_EQ(flat["left_out_steep"], 10);
