@@ -224,8 +224,11 @@ DsmResult build_dsm(const DsmOptions& o) {
   DsmResult out;
   out.georef.has_geotransform = true;
   out.georef.geotransform = {x0, res, 0, y1, 0, -res};
+  // Heights are written in metres, so a vertical CRS in another unit would mislabel them.
+  OGRSpatialReference written(target);
+  if (written.IsCompound()) written.StripVertical();
   char* wkt = nullptr;
-  target.exportToWkt(&wkt);
+  written.exportToWkt(&wkt);
   out.georef.crs_wkt = wkt ? wkt : "";
   CPLFree(wkt);
   Grid<float> terrain(width, height, kNaN);
@@ -233,7 +236,9 @@ DsmResult build_dsm(const DsmOptions& o) {
   // Terrain: every DEM warped bilinearly onto the grid (later DEMs fill where earlier are nodata).
   for (const auto& d : o.dems) {
     auto src = open_raster(d);
-    const double z_scale = height_unit(*src->GetRasterBand(1), src->GetSpatialRef(), o.z_scale, d).metres;
+    const HeightUnit z_unit = height_unit(*src->GetRasterBand(1), src->GetSpatialRef(), o.z_scale, d);
+    const double z_scale = z_unit.metres;
+    out.report.height_units.push_back("'" + d + "': " + z_unit.source);
     GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
     GDALDatasetUniquePtr dst(mem->Create("", width, height, 1, GDT_Float32, nullptr));
     double gt[6] = {x0, res, 0, y1, 0, -res};
@@ -349,7 +354,9 @@ DsmResult build_dsm(const DsmOptions& o) {
     return o.classes.empty() || std::find(o.classes.begin(), o.classes.end(), cls) != o.classes.end();
   };
   // Every return, after denoising and before the class filters, may give its footprint a height.
+  double cloud_z = 1.0;  // metres per z unit of the cloud being read
   auto accept = [&](double x, double y, double z, int cls, bool ground) {
+    z *= cloud_z;
     const double fc = (x - x0) / res, fr = (y1 - y) / res;
     if (!(fc >= 0 && fr >= 0 && fc < width && fr < height) || !std::isfinite(z)) return;
     if (!fp_height.empty()) {  // only footprints need this lookup (a cache miss per return)
@@ -366,7 +373,16 @@ DsmResult build_dsm(const DsmOptions& o) {
   for (const auto& cloud : clouds) {
     const std::string name = "'" + cloud->path() + "'";
     TransformPtr t;
-    if (!cloud_crs(*cloud).empty()) t = transform(srs_from(cloud_crs(*cloud), cloud->path()), target, name);
+    std::optional<OGRSpatialReference> crs;
+    if (!cloud_crs(*cloud).empty()) {
+      crs = srs_from(cloud_crs(*cloud), cloud->path());
+      t = transform(*crs, target, name);
+    }
+    // A cloud without a CRS has its coordinates in the output's. The ground filter below reads the
+    // heights as stored (its slope is in the file's units).
+    const HeightUnit z_unit = cloud_height_unit(crs ? &*crs : &target, cloud->z_unit_metres(), o.z_scale);
+    cloud_z = z_unit.metres;
+    out.report.height_units.push_back(name + ": " + z_unit.source);
     auto each_point = [&](auto&& f) {  // f(x, y, point) in the output CRS
       std::vector<double> xs, ys;
       cloud->read_points([&](const std::vector<LasPoint>& chunk) {

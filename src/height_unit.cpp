@@ -54,41 +54,77 @@ double metres_per_height_unit(std::string_view name) {
       {"ftus", 1200.0 / 3937.0},
       {"us-ft", 1200.0 / 3937.0},
       {"us_survey_foot", 1200.0 / 3937.0},
+      {"us feet", 1200.0 / 3937.0},
+      {"usft", 1200.0 / 3937.0},
+      {"ft (us)", 1200.0 / 3937.0},
+      {"km", 1000.0},
+      {"kilometre", 1000.0},
+      {"kilometer", 1000.0},
+      {"dm", 0.1},
   };
   const std::string key = lower_trimmed(name);
-  for (const Known& k : kKnown) {
-    if (key == k.name) return k.metres;
+  // The whole name, else its first word ("m asl", "metres above sea level").
+  for (const std::string& k : {key, key.substr(0, key.find(' '))}) {
+    for (const Known& known : kKnown) {
+      if (k == known.name) return known.metres;
+    }
   }
   return 0.0;
 }
 
-HeightUnit height_unit(GDALRasterBand& band, const OGRSpatialReference* crs, double given, const std::string& path) {
+namespace {
+
+// The vertical part's unit of a compound CRS, into `unit`; false when the CRS has no vertical part.
+bool vertical_unit(const OGRSpatialReference& crs, HeightUnit& unit) {
+  if (!crs.IsVertical()) return false;
+  const char* name = nullptr;
+  const double metres = crs.GetTargetLinearUnits("VERT_CS", &name);
+  if (!(metres > 0.0) || !std::isfinite(metres)) return false;
+  unit = {metres, "vertical CRS unit '" + std::string(name ? name : "?") + "'"};
+  return true;
+}
+
+void check_given(double given) {
   if (!(given >= 0.0) || !std::isfinite(given)) throw Error("--z-scale must be a positive number");
+}
+
+}  // namespace
+
+HeightUnit height_unit(GDALRasterBand& band, const OGRSpatialReference* crs, double given, const std::string& path) {
+  check_given(given);
   if (given > 0.0) return {given, "--z-scale"};
   const std::string unit = band.GetUnitType() ? band.GetUnitType() : "";
-  if (!lower_trimmed(unit).empty()) {
-    const double metres = metres_per_height_unit(unit);
-    if (metres == 0.0) {
-      throw Error("'" + path + "' gives its heights in '" + unit +
-                  "', a unit skyview does not know; give --z-scale (metres per unit)");
-    }
-    return {metres, "band unit '" + unit + "'"};
+  const std::string key = lower_trimmed(unit);
+  const bool stated = !key.empty() && key != "unknown" && key != "none" && key != "undefined";
+  if (stated && metres_per_height_unit(unit) > 0.0) return {metres_per_height_unit(unit), "band unit '" + unit + "'"};
+  HeightUnit vertical;
+  if (crs && vertical_unit(*crs, vertical)) return vertical;
+  if (stated) {
+    throw Error("'" + path + "' gives its heights in '" + unit +
+                "', a unit skyview does not know; give --z-scale (metres per unit)");
   }
   if (!crs) return {1.0, "metres (assumed: no CRS)"};
-  const char* name = nullptr;
-  if (crs->IsVertical()) {
-    const double metres = crs->GetTargetLinearUnits("VERT_CS", &name);
-    if (metres > 0.0 && std::isfinite(metres)) {
-      return {metres, "vertical CRS unit '" + std::string(name ? name : "?") + "'"};
-    }
-  }
   if (crs->IsGeographic()) return {1.0, "metres (assumed: geographic CRS, no height unit stated)"};
+  const char* name = nullptr;
   const double metres = crs->GetLinearUnits(&name);
   if (is_metre(metres)) return {1.0, "metres (assumed: the CRS is in metres, no height unit stated)"};
   throw Error("'" + path + "' does not say in which unit its heights are, and its CRS is in " +
               (name ? name : "a unit other than the metre") + " (" + number_text(metres) +
               " m): give --z-scale, metres per height unit (" + number_text(metres) + " if the heights are in " +
               (name ? name : "that unit") + ", 1 if in metres)");
+}
+
+HeightUnit cloud_height_unit(const OGRSpatialReference* crs, double stated, double given) {
+  check_given(given);
+  if (given > 0.0) return {given, "--z-scale"};
+  if (stated > 0.0) return {stated, "the file's vertical unit (" + number_text(stated) + " m)"};
+  if (!crs) return {1.0, "metres (assumed: no CRS)"};
+  HeightUnit vertical;
+  if (vertical_unit(*crs, vertical)) return vertical;
+  if (crs->IsGeographic()) return {1.0, "metres (assumed: geographic CRS)"};
+  const char* name = nullptr;
+  const double metres = crs->GetLinearUnits(&name);
+  return {metres, "the CRS's unit '" + std::string(name ? name : "?") + "'"};
 }
 
 }  // namespace skyview

@@ -55,6 +55,7 @@ Runner setup(CLI::App& app) {
     std::string value, reference, dem, json;
     int band = 1, ref_band = 0;
     double scale = 1.0, offset = 0.0, threshold = 0.01, max_slope = -1.0;
+    double z_scale = 0.0;  // of --dem; 0: from the raster
     bool quiet = false, overwrite = false;
   };
   auto o = std::make_shared<Options>();
@@ -71,6 +72,10 @@ Runner setup(CLI::App& app) {
       ->capture_default_str()
       ->check(non_negative_number());
   app.add_option("--dem", o->dem, "Elevation raster on the same grid, for --max-slope");
+  app.add_option("--z-scale", o->z_scale,
+                 "Metres per height unit of --dem (0.3048 for feet); default: its band's unit or vertical CRS, else "
+                 "metres if the CRS is in metres or degrees")
+      ->check(positive_number());
   app.add_option("--max-slope", o->max_slope,
                  "Compare only cells whose ground slope on --dem is at most this (degrees)")
       ->check(number_in(0.0, 90.0));
@@ -98,7 +103,9 @@ Runner setup(CLI::App& app) {
     for (float& v : value.values.values()) v = static_cast<float>(v * o->scale + o->offset);
     std::int64_t steep = 0;
     if (o->max_slope >= 0.0) {
-      const Terrain dem = read_terrain(o->dem, ReadOptions{});
+      ReadOptions ro;
+      ro.z_scale = o->z_scale;
+      const Terrain dem = read_terrain(o->dem, ro);
       check_same_grid({o->value, value.values, value.georef}, {o->dem, dem.heights, dem.georef});
       const double limit = o->max_slope * M_PI / 180.0;
       for (int row = 0; row < dem.height(); ++row) {

@@ -65,9 +65,10 @@ Runner setup(CLI::App& app) {
                  "cells farther than this from any height stay nodata")
       ->check(positive_number())
       ->capture_default_str();
-  app.add_option("--z-scale", o->dsm.z_scale,
-                 "Metres per DEM height unit (0.3048 for feet); default: each DEM's band unit or vertical CRS, else "
-                 "metres if its CRS is in metres or degrees")
+  app.add_option(
+         "--z-scale", o->dsm.z_scale,
+         "Metres per height unit of the DEMs and clouds (0.3048 for feet); default: each input's stated unit "
+         "or vertical CRS, else for a DEM metres if its CRS is in metres or degrees, for a cloud its CRS's unit")
       ->check(positive_number());
   app.add_option("--dtm", o->dtm, "Also write the terrain here: the warped DEMs, else the clouds' bare earth");
   add_output_options(app, o->out);
@@ -115,6 +116,9 @@ Runner setup(CLI::App& app) {
                    {"FOOTPRINTS_FROM_CLOUD", std::to_string(rep.footprints_from_cloud)},
                    {"FOOTPRINTS_REPAIRED", std::to_string(rep.footprints_repaired)},
                    {"FOOTPRINTS_SKIPPED", std::to_string(rep.footprints_skipped)}};
+    std::string units;
+    for (const std::string& u : rep.height_units) units += (units.empty() ? "" : "; ") + u;
+    if (!units.empty()) wo.metadata["HEIGHT_UNITS"] = units;
     write_bands(o->output, r.dsm.width(), r.dsm.height(), r.georef, {{"height", "metre", r.dsm.data(), {}}}, wo);
     if (!o->dtm.empty() && r.dtm.size() > 0) {
       write_bands(o->dtm, r.dtm.width(), r.dtm.height(), r.georef, {{"terrain_height", "metre", r.dtm.data(), {}}}, wo);

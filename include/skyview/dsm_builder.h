@@ -36,7 +36,7 @@ struct DsmOptions {
   double denoise_sigma = 3.0;   // standard deviations
   bool fill = false;            // close nodata holes (GDALFillNodata)
   double fill_distance = 20.0;  // cells
-  double z_scale = 0.0;         // metres per DEM height unit; 0: from each DEM (height_unit.h)
+  double z_scale = 0.0;         // metres per height unit of DEMs and clouds; 0: from each (height_unit.h)
   bool want_dtm = false;        // also the terrain: the DEMs, else the clouds' bare earth
 };
 
@@ -45,6 +45,7 @@ struct DsmReport {
   std::string ground_source;  // "class 2" or "morphological filter" with --ground-only
   std::int64_t cells_from_points = 0, cells_filled = 0;
   int footprints_burned = 0, footprints_repaired = 0, footprints_skipped = 0, footprints_from_cloud = 0;
+  std::vector<std::string> height_units;  // per DEM and cloud: "'path': what gave its heights' unit"
 };
 
 struct DsmResult {

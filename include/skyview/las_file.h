@@ -22,6 +22,9 @@ struct LasHeader {
   double scale[3] = {0, 0, 0}, offset[3] = {0, 0, 0};
   double min[3] = {0, 0, 0}, max[3] = {0, 0, 0};
   std::string crs_wkt;  // from the OGC WKT (E)VLR or the GeoTIFF keys; empty when absent
+  // Metres per z unit where the GeoTIFF keys state it (VerticalUnitsGeoKey: metre, foot, US survey
+  // foot); 0 when they do not.
+  double z_unit_metres = 0.0;
 };
 
 struct LasPoint {

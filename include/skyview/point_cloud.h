@@ -21,6 +21,8 @@ class PointCloud {
   const std::string& path() const { return path_; }
   // OGC WKT, or empty when the file carries no CRS.
   const std::string& crs_wkt() const { return crs_wkt_; }
+  // Metres per z unit where the file states it apart from its CRS (LAS GeoTIFF keys); 0 otherwise.
+  double z_unit_metres() const { return z_unit_metres_; }
   std::uint64_t point_count() const { return point_count_; }
   // Bounding box of the points (min x, min y, max x, max y) in the file's CRS.
   const double* bounds() const { return bounds_; }
@@ -45,6 +47,7 @@ class PointCloud {
     if (!(bounds_[0] <= bounds_[2])) bounds_[0] = bounds_[1] = bounds_[2] = bounds_[3] = 0.0;
   }
   std::string path_, crs_wkt_;
+  double z_unit_metres_ = 0.0;
   std::uint64_t point_count_ = 0;
   double bounds_[4] = {0, 0, 0, 0};
 };

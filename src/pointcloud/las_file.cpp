@@ -55,8 +55,10 @@ std::string wkt_of(OGRSpatialReference& srs) {
   return s;
 }
 
-// GeoKeyDirectoryTag: four u16 of header, then keys of four u16 (id, location, count, value).
-std::string crs_from_geokeys(const std::vector<std::uint8_t>& data) {
+// GeoKeyDirectoryTag: four u16 of header, then keys of four u16 (id, location, count, value). The
+// CRS from the projected or geographic CRS code; `z_unit_metres` from VerticalUnitsGeoKey (0 when
+// absent or not a unit of length it knows).
+std::string crs_from_geokeys(const std::vector<std::uint8_t>& data, double& z_unit_metres) {
   if (data.size() < 8) return "";
   const std::size_t keys = get<std::uint16_t>(data.data() + 6);
   int projected = 0, geographic = 0;
@@ -66,6 +68,9 @@ std::string crs_from_geokeys(const std::vector<std::uint8_t>& data) {
     if (location != 0) continue;
     if (id == 3072) projected = value;   // ProjectedCSTypeGeoKey
     if (id == 2048) geographic = value;  // GeographicTypeGeoKey
+    if (id == 4099) {                    // VerticalUnitsGeoKey: EPSG units of length
+      z_unit_metres = value == 9001 ? 1.0 : value == 9002 ? 0.3048 : value == 9003 ? 1200.0 / 3937.0 : 0.0;
+    }
   }
   const int epsg =
       projected > 0 && projected < 32767 ? projected : (geographic > 0 && geographic < 32767 ? geographic : 0);
@@ -177,7 +182,7 @@ void LasReader::parse() {
   auto note_record = [&](const char* user, int id, const std::vector<std::uint8_t>& body) {
     if (std::strncmp(user, "LASF_Projection", 16) == 0) {
       if (id == 2112) wkt = crs_from_wkt(body);
-      if (id == 34735) geokeys = crs_from_geokeys(body);
+      if (id == 34735) geokeys = crs_from_geokeys(body, hd.z_unit_metres);
     }
     if (std::strncmp(user, "laszip encoded", 16) == 0) {
       throw Error("'" + f + "' is LAZ-compressed; decompress it first, e.g. `laszip -i " + f + " -o out.las`");

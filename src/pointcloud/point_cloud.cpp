@@ -17,6 +17,7 @@ class LasCloud final : public PointCloud {
   explicit LasCloud(const std::string& path) : PointCloud(path), reader_(LasReader::open_file(path)) {
     const LasHeader& h = reader_.header();
     crs_wkt_ = h.crs_wkt;
+    z_unit_metres_ = h.z_unit_metres;
     point_count_ = h.point_count;
     // The bounds from the points, not the header's min and max: writers leave those stale (a grid
     // from them dropped half a cloud without a word) or raw (simple1_3.las, a LAS sample, holds its

@@ -47,6 +47,9 @@ TEST(HeightUnit, NamesThatGdalAndGisFilesGiveHeights) {
   EXPECT_EQ(metres_per_height_unit("Foot"), 0.3048);
   EXPECT_EQ(metres_per_height_unit("US survey foot"), kUsFoot);
   EXPECT_EQ(metres_per_height_unit("ftUS"), kUsFoot);
+  EXPECT_EQ(metres_per_height_unit("m asl"), 1.0);
+  EXPECT_EQ(metres_per_height_unit("usft"), kUsFoot);
+  EXPECT_EQ(metres_per_height_unit("km"), 1000.0);
   EXPECT_EQ(metres_per_height_unit("furlong"), 0.0);
   EXPECT_EQ(metres_per_height_unit("1"), 0.0);
   EXPECT_EQ(metres_per_height_unit(""), 0.0);
@@ -98,6 +101,27 @@ TEST(HeightUnit, UnstatedHeightsUnderAFeetCrsAreRefusedUntilTheUserSays) {
   // A unit nobody can convert is refused the same way.
   const std::string odd = write_heights(dir, "odd.tif", "EPSG:32633", 500000, 5000000, "furlong");
   EXPECT_THROW(read_terrain(odd, {}), Error);
+}
+
+TEST(HeightUnit, GeoTiffsWithACompoundCrsGiveTheirVerticalUnit) {
+  const std::string dir = test::temp_dir("height-unit");
+  ReadReport report;
+  // UTM 33N in metres over NAVD88 heights in US survey feet: GDAL hands the vertical unit to the band.
+  const Terrain utm_ft =
+      read_terrain(write_heights(dir, "utm_ft.tif", "EPSG:32633+6360", 500000, 5000000, ""), {}, &report);
+  EXPECT_NEAR(height(utm_ft, 2), 12.0 * kUsFoot, 1e-5);
+  EXPECT_NEAR(report.z_scale, kUsFoot, 1e-12);
+  // New York Long Island in US survey feet over NAVD88 heights in metres: not refused.
+  const Terrain ny_m = read_terrain(write_heights(dir, "ny_m.tif", "EPSG:2263+5703", 980000, 200000, ""), {}, &report);
+  EXPECT_NEAR(height(ny_m, 2), 12.0, 1e-5);
+  EXPECT_EQ(report.z_scale, 1.0);
+  // A band unit it does not know gives way to a vertical CRS; "unknown" is no unit at all.
+  const Terrain odd =
+      read_terrain(write_heights(dir, "odd_ft.tif", "EPSG:32633+6360", 500000, 5000000, "elevation"), {}, &report);
+  EXPECT_NEAR(report.z_scale, kUsFoot, 1e-12) << report.height_unit;
+  const Terrain unknown =
+      read_terrain(write_heights(dir, "unknown.tif", "EPSG:32633", 500000, 5000000, "unknown"), {}, &report);
+  EXPECT_EQ(report.z_scale, 1.0) << report.height_unit;
 }
 
 TEST(HeightUnit, ACompoundCrsGivesItsVerticalUnit) {

@@ -305,6 +305,75 @@ TEST(DsmBuilder, ImplausibleFootprintsAndGridsAreRefused) {
   EXPECT_NE(error_of(reversed).find("xmin < xmax"), std::string::npos) << error_of(reversed);
 }
 
+// A cloud's x, y and z are coordinates of one CRS: heights in feet are written in metres, from
+// the CRS's own unit or its vertical part; --z-scale overrides; a DEM's band unit counts too.
+TEST(DsmBuilder, HeightsInFeetAreWrittenInMetres) {
+  const std::string dir = dir_for("feet");
+  constexpr double kUsFoot = 1200.0 / 3937.0;
+  // Oregon GIC Lambert in international feet (the Autzen samples' CRS).
+  const std::vector<LasPoint> oregon = {{636000.5, 850000.5, 1000.0, 0, 1, 1, 2}};
+  LasWriteOptions feet;
+  feet.crs_wkt = wkt("EPSG:2994");
+  write_las(dir + "/oregon.las", oregon, feet);
+  DsmOptions d;
+  d.points = {dir + "/oregon.las"};
+  d.te = std::array<double, 4>{636000, 850000, 636002, 850002};
+  DsmResult r = build_dsm(d);
+  EXPECT_NEAR(r.dsm(0, 1), 304.8, 1e-3);
+  ASSERT_EQ(r.report.height_units.size(), 1u);
+  EXPECT_NE(r.report.height_units[0].find("foot"), std::string::npos) << r.report.height_units[0];
+  d.z_scale = 1.0;
+  EXPECT_NEAR(build_dsm(d).dsm(0, 1), 1000.0, 1e-3);
+  // UTM in metres over NAVD88 heights in US survey feet (LAS 1.4, WKT): the vertical part decides,
+  // and the output's CRS keeps only the horizontal part (its heights are metres now).
+  const std::vector<LasPoint> utm = {{500000.5, 6400000.5, 1000.0, 0, 1, 1, 2}};
+  LasWriteOptions compound;
+  compound.version_minor = 4;
+  compound.point_format = 6;
+  compound.crs_wkt = wkt("EPSG:32633+6360");
+  compound.offset[0] = 500000, compound.offset[1] = 6400000;
+  write_las(dir + "/compound.las", utm, compound);
+  DsmOptions c;
+  c.points = {dir + "/compound.las"};
+  c.te = std::array<double, 4>{500000, 6400000, 500002, 6400002};
+  r = build_dsm(c);
+  EXPECT_NEAR(r.dsm(0, 1), 1000.0 * kUsFoot, 1e-3);
+  OGRSpatialReference written;
+  ASSERT_EQ(written.importFromWkt(r.georef.crs_wkt.c_str()), OGRERR_NONE);
+  EXPECT_FALSE(written.IsCompound());
+  EXPECT_TRUE(written.IsProjected());
+  // A DEM whose band says feet.
+  GeoReference g;
+  g.has_geotransform = true;
+  g.geotransform = {500000, 1, 0, 6400004, 0, -1};
+  g.crs_wkt = wkt("EPSG:32633");
+  std::vector<float> z(16, 100.0f);
+  write_bands(dir + "/dem_ft.tif", 4, 4, g, {{"height", "ft", z.data(), {}}}, {});
+  DsmOptions dem;
+  dem.dems = {dir + "/dem_ft.tif"};
+  r = build_dsm(dem);
+  EXPECT_NEAR(r.dsm(1, 1), 30.48, 1e-4);
+  ASSERT_EQ(r.report.height_units.size(), 1u);
+  EXPECT_NE(r.report.height_units[0].find("band unit 'ft'"), std::string::npos) << r.report.height_units[0];
+}
+
+TEST(DsmBuilder, TheAutzenSampleInFeetBecomesMetres) {
+  const std::string path = std::string(SKYVIEW_SHARED_DIR) + "/sample_data/las/autzen_geo_proj.las";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "../shared/sample_data is absent";
+  DsmOptions d;
+  d.points = {path};
+  d.res = 5.0;  // feet, the CRS's unit
+  const DsmResult r = build_dsm(d);
+  // Its returns lie 407-537 ft up (GeoTIFF keys: Oregon Lambert in feet, no vertical keys).
+  float lo = 1e9f, hi = -1e9f;
+  for (const float v : r.dsm.values()) {
+    if (std::isnan(v)) continue;
+    lo = std::min(lo, v), hi = std::max(hi, v);
+  }
+  EXPECT_NEAR(lo, 407.35 * 0.3048, 0.01);
+  EXPECT_NEAR(hi, 536.84 * 0.3048, 0.01);
+}
+
 TEST(DsmBuilder, RealLidarSampleGridsAllItsPoints) {
   const std::string path = std::string(SKYVIEW_SHARED_DIR) + "/sample_data/las/simple.las";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "../shared/sample_data is absent";

@@ -85,6 +85,11 @@ TEST(LasFile, CrsFromGeoTiffKeysAndFromWkt) {
   if (las_sample("simple.las").empty()) GTEST_SKIP() << "../shared/sample_data is absent";
   EXPECT_NE(LasReader::open_file(las_sample("autzen_geo_proj.las")).header().crs_wkt.find("PROJCS"), std::string::npos);
   EXPECT_FALSE(LasReader::open_file(las_sample("file_with_both_wkt_and_geotiff_vlrs.las")).header().crs_wkt.empty());
+  // VerticalUnitsGeoKey where the keys give one: US survey feet, metres; none in the Autzen sample.
+  EXPECT_EQ(LasReader::open_file(las_sample("file_with_both_wkt_and_geotiff_vlrs.las")).header().z_unit_metres,
+            1200.0 / 3937.0);
+  EXPECT_EQ(LasReader::open_file(las_sample("simple1_4.las")).header().z_unit_metres, 1.0);
+  EXPECT_EQ(LasReader::open_file(las_sample("autzen_geo_proj.las")).header().z_unit_metres, 0.0);
 }
 
 TEST(LasFile, LazIsRefusedWithTheWayToDecompressIt) {
