@@ -354,9 +354,7 @@ DsmResult build_dsm(const DsmOptions& o) {
     return o.classes.empty() || std::find(o.classes.begin(), o.classes.end(), cls) != o.classes.end();
   };
   // Every return, after denoising and before the class filters, may give its footprint a height.
-  double cloud_z = 1.0;  // metres per z unit of the cloud being read
   auto accept = [&](double x, double y, double z, int cls, bool ground) {
-    z *= cloud_z;
     const double fc = (x - x0) / res, fr = (y1 - y) / res;
     if (!(fc >= 0 && fr >= 0 && fc < width && fr < height) || !std::isfinite(z)) return;
     if (!fp_height.empty()) {  // only footprints need this lookup (a cache miss per return)
@@ -378,10 +376,10 @@ DsmResult build_dsm(const DsmOptions& o) {
       crs = srs_from(cloud_crs(*cloud), cloud->path());
       t = transform(*crs, target, name);
     }
-    // A cloud without a CRS has its coordinates in the output's. The ground filter below reads the
-    // heights as stored (its slope is in the file's units).
-    const HeightUnit z_unit = cloud_height_unit(crs ? &*crs : &target, cloud->z_unit_metres(), o.z_scale);
-    cloud_z = z_unit.metres;
+    // Heights in metres from the start: the denoiser and the ground filter's thresholds work in them.
+    const HeightUnit z_unit =
+        cloud_height_unit(crs ? &*crs : nullptr, &target, cloud->z_unit_metres(), o.points_z_scale);
+    const double cloud_z = z_unit.metres;
     out.report.height_units.push_back(name + ": " + z_unit.source);
     auto each_point = [&](auto&& f) {  // f(x, y, point) in the output CRS
       std::vector<double> xs, ys;
@@ -410,7 +408,7 @@ DsmResult build_dsm(const DsmOptions& o) {
     if (!o.denoise && !filter_ground) {
       each_point([&](double x, double y, const LasPoint& p) {
         ++out.report.points_read;
-        accept(x, y, p.z, p.classification, p.classification == 2);
+        accept(x, y, p.z * cloud_z, p.classification, p.classification == 2);
       });
       continue;
     }
@@ -421,7 +419,7 @@ DsmResult build_dsm(const DsmOptions& o) {
     each_point([&](double x, double y, const LasPoint& p) {
       ++out.report.points_read;
       if (!std::isfinite(p.z)) return;
-      pts.push_back({x, y, p.z});
+      pts.push_back({x, y, p.z * cloud_z});
       cls.push_back(p.classification);
     });
     if (o.denoise) {

@@ -114,17 +114,21 @@ HeightUnit height_unit(GDALRasterBand& band, const OGRSpatialReference* crs, dou
               (name ? name : "that unit") + ", 1 if in metres)");
 }
 
-HeightUnit cloud_height_unit(const OGRSpatialReference* crs, double stated, double given) {
+HeightUnit cloud_height_unit(const OGRSpatialReference* crs, const OGRSpatialReference* output, double stated,
+                             double given) {
   check_given(given);
-  if (given > 0.0) return {given, "--z-scale"};
-  if (stated > 0.0) return {stated, "the file's vertical unit (" + number_text(stated) + " m)"};
-  if (!crs) return {1.0, "metres (assumed: no CRS)"};
+  if (given > 0.0) return {given, "--points-z-scale"};
+  const OGRSpatialReference* frame = crs ? crs : output;
+  const std::string whose = crs ? "its CRS's" : "the output CRS's (the cloud has none)";
   HeightUnit vertical;
-  if (vertical_unit(*crs, vertical)) return vertical;
-  if (crs->IsGeographic()) return {1.0, "metres (assumed: geographic CRS)"};
+  if (frame && vertical_unit(*frame, vertical)) return vertical;
+  if (stated > 0.0) return {stated, "the file's vertical unit (" + number_text(stated) + " m)"};
+  if (!frame) return {1.0, "metres (assumed: no CRS)"};
+  if (frame->IsGeographic()) return {1.0, "metres (assumed: geographic CRS)"};
   const char* name = nullptr;
-  const double metres = crs->GetLinearUnits(&name);
-  return {metres, "the CRS's unit '" + std::string(name ? name : "?") + "'"};
+  const double metres = frame->GetLinearUnits(&name);
+  if (!(metres > 0.0) || !std::isfinite(metres)) return {1.0, "metres (assumed: " + whose + " unit is unusable)"};
+  return {metres, whose + " unit '" + std::string(name ? name : "?") + "'"};
 }
 
 }  // namespace skyview

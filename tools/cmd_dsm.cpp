@@ -65,10 +65,13 @@ Runner setup(CLI::App& app) {
                  "cells farther than this from any height stay nodata")
       ->check(positive_number())
       ->capture_default_str();
-  app.add_option(
-         "--z-scale", o->dsm.z_scale,
-         "Metres per height unit of the DEMs and clouds (0.3048 for feet); default: each input's stated unit "
-         "or vertical CRS, else for a DEM metres if its CRS is in metres or degrees, for a cloud its CRS's unit")
+  app.add_option("--z-scale", o->dsm.z_scale,
+                 "Metres per height unit of the DEMs (0.3048 for feet); default: each DEM's band unit or vertical "
+                 "CRS, else metres if its CRS is in metres or degrees")
+      ->check(positive_number());
+  app.add_option("--points-z-scale", o->dsm.points_z_scale,
+                 "Metres per z unit of the clouds; default: each cloud's vertical CRS or stated unit, else its "
+                 "CRS's unit (x, y and z share one CRS)")
       ->check(positive_number());
   app.add_option("--dtm", o->dtm, "Also write the terrain here: the warped DEMs, else the clouds' bare earth");
   add_output_options(app, o->out);

@@ -36,7 +36,8 @@ struct DsmOptions {
   double denoise_sigma = 3.0;   // standard deviations
   bool fill = false;            // close nodata holes (GDALFillNodata)
   double fill_distance = 20.0;  // cells
-  double z_scale = 0.0;         // metres per height unit of DEMs and clouds; 0: from each (height_unit.h)
+  double z_scale = 0.0;         // metres per DEM height unit; 0: from each DEM (height_unit.h)
+  double points_z_scale = 0.0;  // metres per cloud z unit; 0: from each cloud (cloud_height_unit)
   bool want_dtm = false;        // also the terrain: the DEMs, else the clouds' bare earth
 };
 

@@ -29,9 +29,11 @@ double metres_per_height_unit(std::string_view name);
 HeightUnit height_unit(GDALRasterBand& band, const OGRSpatialReference* crs, double given, const std::string& path);
 
 // The same for a point cloud's z, whose x, y and z are coordinates of one CRS (LAS): `given` > 0
-// wins; then `stated` > 0 (what the file says apart from its CRS, PointCloud::z_unit_metres); then
-// the vertical part of a compound CRS; then the CRS's own unit (a LAS file in state-plane feet
-// holds its heights in feet); the metre for a geographic CRS or none.
-HeightUnit cloud_height_unit(const OGRSpatialReference* crs, double stated, double given);
+// wins; then the vertical part of its compound CRS (the user's --s_srs or the file's WKT); then
+// `stated` > 0 (what the file says apart from its CRS: PointCloud::z_unit_metres); then its CRS's own
+// unit (a LAS file in state-plane feet holds its heights in feet), the metre for a geographic CRS.
+// `crs` null: the cloud's coordinates are taken to be in `output` (the DSM's CRS), and so is z.
+HeightUnit cloud_height_unit(const OGRSpatialReference* crs, const OGRSpatialReference* output, double stated,
+                             double given);
 
 }  // namespace skyview

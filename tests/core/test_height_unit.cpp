@@ -139,6 +139,23 @@ TEST(HeightUnit, ACompoundCrsGivesItsVerticalUnit) {
   EXPECT_EQ(height_unit(*ds->GetRasterBand(1), nullptr, 0.0, "mem").metres, 1.0);
 }
 
+TEST(HeightUnit, ACloudsHeightsShareItsCoordinatesUnit) {
+  OGRSpatialReference feet, metres_over_feet, output_feet;
+  ASSERT_EQ(feet.SetFromUserInput("EPSG:2994"), OGRERR_NONE);  // Oregon GIC Lambert (ft)
+  ASSERT_EQ(metres_over_feet.SetFromUserInput("EPSG:32633+6360"), OGRERR_NONE);
+  ASSERT_EQ(output_feet.SetFromUserInput("EPSG:2263"), OGRERR_NONE);
+  EXPECT_EQ(cloud_height_unit(&feet, nullptr, 0.0, 0.0).metres, 0.3048);
+  // The file's own vertical unit beats the horizontal unit, a compound CRS beats both.
+  EXPECT_EQ(cloud_height_unit(&feet, nullptr, 1.0, 0.0).metres, 1.0);
+  EXPECT_NEAR(cloud_height_unit(&metres_over_feet, nullptr, 1.0, 0.0).metres, kUsFoot, 1e-12);
+  // No CRS of its own: the output's, and said so.
+  const HeightUnit borrowed = cloud_height_unit(nullptr, &output_feet, 0.0, 0.0);
+  EXPECT_NEAR(borrowed.metres, kUsFoot, 1e-12);
+  EXPECT_NE(borrowed.source.find("output CRS"), std::string::npos) << borrowed.source;
+  EXPECT_EQ(cloud_height_unit(nullptr, nullptr, 0.0, 0.0).metres, 1.0);
+  EXPECT_EQ(cloud_height_unit(&feet, nullptr, 0.0, 2.0).metres, 2.0);
+}
+
 TEST(HeightUnit, TheCommandLineRecordsTheUnitOrSaysWhatToGive) {
   const std::string dir = test::temp_dir("height-unit");
   const std::string ny = write_heights(dir, "ny.tif", "EPSG:2263", 980000, 200000, "");

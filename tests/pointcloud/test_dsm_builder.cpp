@@ -322,8 +322,23 @@ TEST(DsmBuilder, HeightsInFeetAreWrittenInMetres) {
   EXPECT_NEAR(r.dsm(0, 1), 304.8, 1e-3);
   ASSERT_EQ(r.report.height_units.size(), 1u);
   EXPECT_NE(r.report.height_units[0].find("foot"), std::string::npos) << r.report.height_units[0];
-  d.z_scale = 1.0;
+  d.points_z_scale = 1.0;
   EXPECT_NEAR(build_dsm(d).dsm(0, 1), 1000.0, 1e-3);
+  d.points_z_scale = 0.0;
+  d.z_scale = 1.0;  // for DEMs only
+  EXPECT_NEAR(build_dsm(d).dsm(0, 1), 304.8, 1e-3);
+  // Through the ground filter (an unclassified cloud), whose thresholds are metres.
+  std::vector<LasPoint> flat;
+  for (int i = 0; i < 9; ++i) flat.push_back({636000.5 + i % 3, 850000.5 + i / 3, 1000.0, 0, 1, 1, 1});
+  write_las(dir + "/flat.las", flat, feet);
+  DsmOptions filtered;
+  filtered.points = {dir + "/flat.las"};
+  filtered.ground_only = true;
+  filtered.denoise = true;
+  filtered.te = std::array<double, 4>{636000, 850000, 636003, 850003};
+  const DsmResult ground = build_dsm(filtered);
+  EXPECT_EQ(ground.report.ground_source, "morphological filter");
+  EXPECT_NEAR(ground.dsm(1, 1), 304.8, 1e-3);
   // UTM in metres over NAVD88 heights in US survey feet (LAS 1.4, WKT): the vertical part decides,
   // and the output's CRS keeps only the horizontal part (its heights are metres now).
   const std::vector<LasPoint> utm = {{500000.5, 6400000.5, 1000.0, 0, 1, 1, 2}};
