@@ -56,21 +56,28 @@ std::string wkt_of(OGRSpatialReference& srs) {
 }
 
 // GeoKeyDirectoryTag: four u16 of header, then keys of four u16 (id, location, count, value). The
-// CRS from the projected or geographic CRS code; `z_unit_metres` from VerticalUnitsGeoKey (0 when
-// absent or not a unit of length it knows).
+// CRS from the projected or geographic CRS code; `z_unit_metres` from VerticalUnitsGeoKey, else from
+// the unit of the EPSG vertical CRS that VerticalCSTypeGeoKey names (0 when neither says).
 std::string crs_from_geokeys(const std::vector<std::uint8_t>& data, double& z_unit_metres) {
   if (data.size() < 8) return "";
   const std::size_t keys = get<std::uint16_t>(data.data() + 6);
-  int projected = 0, geographic = 0;
+  int projected = 0, geographic = 0, vertical = 0;
   for (std::size_t k = 0; k < keys && 8 + 8 * (k + 1) <= data.size(); ++k) {
     const std::uint8_t* e = data.data() + 8 + 8 * k;
     const int id = get<std::uint16_t>(e), location = get<std::uint16_t>(e + 2), value = get<std::uint16_t>(e + 6);
     if (location != 0) continue;
     if (id == 3072) projected = value;   // ProjectedCSTypeGeoKey
     if (id == 2048) geographic = value;  // GeographicTypeGeoKey
+    if (id == 4096) vertical = value;    // VerticalCSTypeGeoKey
     if (id == 4099) {                    // VerticalUnitsGeoKey: EPSG units of length
       z_unit_metres = value == 9001 ? 1.0 : value == 9002 ? 0.3048 : value == 9003 ? 1200.0 / 3937.0 : 0.0;
     }
+  }
+  OGRSpatialReference vertical_crs;
+  if (z_unit_metres == 0.0 && vertical > 0 && vertical < 32767 &&
+      vertical_crs.importFromEPSG(vertical) == OGRERR_NONE && vertical_crs.IsVertical()) {
+    const double metres = vertical_crs.GetTargetLinearUnits("VERT_CS");
+    if (metres > 0.0 && std::isfinite(metres)) z_unit_metres = metres;
   }
   const int epsg =
       projected > 0 && projected < 32767 ? projected : (geographic > 0 && geographic < 32767 ? geographic : 0);

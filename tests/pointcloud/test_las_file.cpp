@@ -4,10 +4,12 @@
 
 #include <ogr_spatialref.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 
 #include "core/test_support.h"
@@ -90,6 +92,26 @@ TEST(LasFile, CrsFromGeoTiffKeysAndFromWkt) {
             1200.0 / 3937.0);
   EXPECT_EQ(LasReader::open_file(las_sample("simple1_4.las")).header().z_unit_metres, 1.0);
   EXPECT_EQ(LasReader::open_file(las_sample("autzen_geo_proj.las")).header().z_unit_metres, 0.0);
+}
+
+// A LAS 1.2 file whose GeoTIFF keys name a vertical CRS (VerticalCSTypeGeoKey) and no unit: the
+// z unit is that CRS's. Made from a written file by turning its GTRasterTypeGeoKey entry (which the
+// reader ignores) into VerticalCSTypeGeoKey = 6360, NAVD88 height in US survey feet.
+TEST(LasFile, AVerticalCrsInTheGeoTiffKeysGivesTheHeightsUnit) {
+  const std::string dir = test::temp_dir("las-vertical");
+  LasWriteOptions o;
+  o.crs_wkt = test::wkt_of("EPSG:32633");
+  o.offset[0] = 500000, o.offset[1] = 6400000;
+  write_las(dir + "/utm.las", {{500000.5, 6400000.5, 10.0, 0, 1, 1, 2}}, o);
+  std::ifstream in(dir + "/utm.las", std::ios::binary);
+  std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(LasReader::open_memory(bytes.data(), bytes.size()).header().z_unit_metres, 0.0);
+  const std::uint8_t raster_type[8] = {0x01, 0x04, 0, 0, 1, 0, 1, 0};  // 1025, 0, 1, 1 (little-endian)
+  const auto at = std::search(bytes.begin(), bytes.end(), std::begin(raster_type), std::end(raster_type));
+  ASSERT_NE(at, bytes.end());
+  const std::uint8_t vertical_crs[8] = {0x00, 0x10, 0, 0, 1, 0, 0xd8, 0x18};  // 4096, 0, 1, 6360
+  std::copy(std::begin(vertical_crs), std::end(vertical_crs), at);
+  EXPECT_NEAR(LasReader::open_memory(bytes.data(), bytes.size()).header().z_unit_metres, 1200.0 / 3937.0, 1e-12);
 }
 
 TEST(LasFile, LazIsRefusedWithTheWayToDecompressIt) {
