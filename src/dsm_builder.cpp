@@ -103,6 +103,22 @@ GDALDatasetUniquePtr open_raster(const std::string& path) {
   return ds;
 }
 
+// Metres per unit of the footprints' height fields (DsmOptions::footprint_z_scale).
+double footprint_height_unit(const DsmOptions& o, const OGRSpatialReference* crs) {
+  if (o.footprint_z_scale > 0.0) return o.footprint_z_scale;
+  if (o.height_field.empty() && o.base_field.empty()) return 1.0;
+  if (crs && crs->IsProjected()) {
+    const char* name = nullptr;
+    const double metres = crs->GetLinearUnits(&name);
+    if (std::abs(metres - 1.0) > 1e-12) {
+      throw Error("'" + o.footprints + "' is in " + (name ? name : "a unit other than the metre") +
+                  " and its height fields carry no unit: give --footprint-z-scale, metres per unit (" +
+                  number_text(metres) + " if the heights are in " + (name ? name : "that unit") + ", 1 if in metres)");
+    }
+  }
+  return 1.0;
+}
+
 }  // namespace
 
 DsmResult build_dsm(const DsmOptions& o) {
@@ -273,6 +289,11 @@ DsmResult build_dsm(const DsmOptions& o) {
   if (layer) {
     TransformPtr t;
     if (layer->GetSpatialRef()) t = transform(*layer->GetSpatialRef(), target, "'" + o.footprints + "'");
+    const double fp_scale = footprint_height_unit(o, layer->GetSpatialRef());
+    if (!o.height_field.empty() || !o.base_field.empty()) {
+      out.report.height_units.push_back(
+          "'" + o.footprints + "': " + (o.footprint_z_scale > 0.0 ? "--footprint-z-scale" : "metres (assumed)"));
+    }
     GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
     GDALDatasetUniquePtr ids(mem->Create("", width, height, 1, GDT_Float32, nullptr));
     double gt[6] = {x0, res, 0, y1, 0, -res};
@@ -311,7 +332,7 @@ DsmResult build_dsm(const DsmOptions& o) {
       auto read = [&](const std::string& field, double lo, double hi) {
         const int index = field.empty() ? -1 : feature->GetFieldIndex(field.c_str());
         if (index < 0 || !feature->IsFieldSetAndNotNull(index)) return std::numeric_limits<double>::quiet_NaN();
-        const double v = feature->GetFieldAsDouble(index);
+        const double v = feature->GetFieldAsDouble(index) * fp_scale;
         if (!(v >= lo && v <= hi)) {
           throw Error("footprint " + std::to_string(feature->GetFID()) + " of '" + o.footprints + "' has " + field +
                       " = " + number_text(v) + " m, outside " + number_text(lo) + " to " + number_text(hi) +

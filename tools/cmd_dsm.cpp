@@ -69,6 +69,10 @@ Runner setup(CLI::App& app) {
                  "Metres per height unit of the DEMs (0.3048 for feet); default: each DEM's band unit or vertical "
                  "CRS, else metres if its CRS is in metres or degrees")
       ->check(positive_number());
+  app.add_option("--footprint-z-scale", o->dsm.footprint_z_scale,
+                 "Metres per unit of --height-field and --base-field (0.3048 for feet); default: metres, refused "
+                 "where the footprints' CRS is in another unit")
+      ->check(positive_number());
   app.add_option("--points-z-scale", o->dsm.points_z_scale,
                  "Metres per z unit of the clouds; default: each cloud's vertical CRS or stated unit, else its "
                  "CRS's unit (x, y and z share one CRS)")

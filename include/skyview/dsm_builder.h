@@ -38,7 +38,10 @@ struct DsmOptions {
   double fill_distance = 20.0;  // cells
   double z_scale = 0.0;         // metres per DEM height unit; 0: from each DEM (height_unit.h)
   double points_z_scale = 0.0;  // metres per cloud z unit; 0: from each cloud (cloud_height_unit)
-  bool want_dtm = false;        // also the terrain: the DEMs, else the clouds' bare earth
+  // Metres per unit of the footprints' height fields; 0: metres, refused where the layer's CRS is in
+  // another unit (attributes carry no unit, and such layers often give feet).
+  double footprint_z_scale = 0.0;
+  bool want_dtm = false;  // also the terrain: the DEMs, else the clouds' bare earth
 };
 
 struct DsmReport {

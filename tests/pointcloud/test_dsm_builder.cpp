@@ -372,6 +372,30 @@ TEST(DsmBuilder, HeightsInFeetAreWrittenInMetres) {
   EXPECT_NE(r.report.height_units[0].find("band unit 'ft'"), std::string::npos) << r.report.height_units[0];
 }
 
+// Footprint heights are attributes without a unit: metres, unless the layer's CRS is in another
+// unit, where the user must say (NYC's footprints, in EPSG:2263, give roof heights in feet).
+TEST(DsmBuilder, FootprintHeightsUnderAFeetCrsNeedTheirUnit) {
+  const std::string dir = dir_for("footprint-feet");
+  write_text(dir + "/ny.geojson", R"({"type":"FeatureCollection",
+    "crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::2263"}},
+    "features":[{"type":"Feature","properties":{"h":100},"geometry":{"type":"Polygon",
+      "coordinates":[[[980000,200000],[980100,200000],[980100,200100],[980000,200100],[980000,200000]]]}}]})");
+  DsmOptions d;
+  d.footprints = dir + "/ny.geojson";
+  d.height_field = "h";
+  d.absolute_heights = true;
+  d.res = 10.0;
+  try {
+    build_dsm(d);
+    ADD_FAILURE() << "footprint heights under a feet CRS read without their unit";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--footprint-z-scale"), std::string::npos) << e.what();
+  }
+  d.footprint_z_scale = 0.3048;
+  const DsmResult r = build_dsm(d);
+  EXPECT_NEAR(r.dsm(5, 5), 30.48, 1e-4);
+}
+
 TEST(DsmBuilder, TheAutzenSampleInFeetBecomesMetres) {
   const std::string path = std::string(SKYVIEW_SHARED_DIR) + "/sample_data/las/autzen_geo_proj.las";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "../shared/sample_data is absent";
