@@ -465,6 +465,28 @@ GDALRasterBand* band_of(GDALDataset* ds, int index, const std::string& path) {
 
 }  // namespace
 
+void check_output_name(const std::string& path, const std::string& format) {
+  init_gdal();
+  GDALDriver* driver = output_driver(format);
+  std::vector<std::string> extensions;
+  std::istringstream names(driver->GetMetadataItem(GDAL_DMD_EXTENSIONS)  ? driver->GetMetadataItem(GDAL_DMD_EXTENSIONS)
+                           : driver->GetMetadataItem(GDAL_DMD_EXTENSION) ? driver->GetMetadataItem(GDAL_DMD_EXTENSION)
+                                                                         : "");
+  for (std::string e; names >> e;) {
+    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
+    extensions.push_back("." + e);
+  }
+  if (extensions.empty()) return;  // the format names no extension
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (std::find(extensions.begin(), extensions.end(), ext) != extensions.end()) return;
+  std::string list;
+  for (std::size_t i = 0; i < extensions.size(); ++i)
+    list += (i == 0 ? "" : i + 1 == extensions.size() ? " or " : ", ") + extensions[i];
+  throw Error("output '" + path + "' does not end in " + list + ", as GDAL format '" + format +
+              "' names its files; rename it, or give -of for the format its name says");
+}
+
 void check_output_format(const std::string& format, int bands, const std::vector<std::string>& user_options) {
   init_gdal();
   GDALDriver* driver = output_driver(format);

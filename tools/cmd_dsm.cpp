@@ -91,6 +91,8 @@ Runner setup(CLI::App& app) {
     check_outputs_apart({o->output, o->dtm}, inputs);
     check_output_writable(o->output, o->out.overwrite);
     check_output_format(o->out.format, 1, o->out.creation_options);
+    check_output_name(o->output, o->out.format);
+    if (!o->dtm.empty()) check_output_name(o->dtm, o->out.format);
     if (!o->dtm.empty()) check_output_writable(o->dtm, o->out.overwrite);
     o->dsm.want_dtm = !o->dtm.empty();
     if (!o->te.empty()) o->dsm.te = std::array<double, 4>{o->te[0], o->te[1], o->te[2], o->te[3]};
@@ -142,7 +144,9 @@ Runner setup(CLI::App& app) {
                    static_cast<long long>(rep.cells_filled));
     }
     if (rep.footprints_skipped > 0) {
-      std::fprintf(stderr, "Warning: %d footprints were skipped (no height and no returns, or invalid)\n",
+      std::fprintf(stderr,
+                   "Warning: %d footprints were skipped (a height above the terrain where there is none, off the DEM; "
+                   "no height and no returns; invalid, or covering no cell centre)\n",
                    rep.footprints_skipped);
     }
     return 0;

@@ -25,13 +25,16 @@ Runner setup(CLI::App& app) {
     const int w = job.terrain.width(), h = job.terrain.height(), n = job.engine->params().directions;
     const Window whole = Window::whole(job.terrain);
     std::vector<unsigned char> blank(whole.cells());  // cells written as nodata
+    std::int64_t edge_cells = 0;
     for (int r = 0; r < h; ++r) {
       for (int c = 0; c < w; ++c) {
-        blank[static_cast<std::size_t>(r) * w + c] =
-            !job.terrain.valid(c, r) ||
-            (job.edge == EdgeMode::nodata && search_circle_leaves_raster(job.terrain, c, r, job.engine->radius()));
+        const bool valid = job.terrain.valid(c, r);
+        const bool leaves = valid && search_circle_leaves_raster(job.terrain, c, r, job.engine->radius());
+        edge_cells += leaves;
+        blank[static_cast<std::size_t>(r) * w + c] = !valid || (job.edge == EdgeMode::nodata && leaves);
       }
     }
+    record_edge_cells(job, edge_cells);
     WriteOptions wo;
     wo.format = o->out.format;
     wo.creation_options = o->out.creation_options;

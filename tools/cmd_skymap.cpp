@@ -23,6 +23,10 @@
 namespace skyview::cli {
 namespace {
 
+// Hošek–Wilkie's spectral radiance is summed over its 11 bands only (docs/sky.md): its energies
+// are about 40 % of the broadband ones, which a reader of the numbers must be told.
+constexpr const char* kHosekSpectrum = "320-720 nm only (Hosek-Wilkie bands, not rescaled to broadband: about 40%)";
+
 struct SkymapOptions {
   std::string output, preview, from, to, step = "30m", tz, sky = "preetham", epw;
   std::optional<double> lat, lon, elevation;
@@ -68,6 +72,7 @@ int run(const SkymapOptions& o) {
   check_outputs_apart({o.output, preview}, {o.epw});
   check_output_writable(o.output, o.out.overwrite);
   check_output_format(o.out.format, 2, o.out.creation_options);
+  check_output_name(o.output, o.out.format);
   if (!preview.empty()) check_output_writable(preview, o.out.overwrite);
   const auto sky = make_sky(o);
 
@@ -138,7 +143,10 @@ int run(const SkymapOptions& o) {
   if (o.sky == "preetham" || o.sky == "hosek" || (o.sky == "isotropic" && !weather)) {
     meta["TURBIDITY"] = number_text(o.turbidity);
   }
-  if (o.sky == "hosek") meta["ALBEDO"] = number_text(o.albedo);
+  if (o.sky == "hosek") {
+    meta["ALBEDO"] = number_text(o.albedo);
+    meta["SPECTRUM"] = kHosekSpectrum;
+  }
   if (o.sky == "preetham" || (o.sky == "isotropic" && !weather))
     meta["LUMINOUS_EFFICACY_LM_W"] = number_text(o.efficacy);
   meta["TIME_STEPS"] = std::to_string(steps.size());
@@ -190,8 +198,9 @@ int run(const SkymapOptions& o) {
   if (!o.out.quiet) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     std::fprintf(stderr,
-                 "skyview skymap: %zu steps, horizontal exposure %.1f kWh/m2 (direct %.1f, diffuse %.1f), %.2f s\n",
-                 steps.size(), (direct_h + diffuse_h) / 1000, direct_h / 1000, diffuse_h / 1000, seconds);
+                 "skyview skymap: %zu steps, horizontal exposure %.1f kWh/m2 (direct %.1f, diffuse %.1f%s), %.2f s\n",
+                 steps.size(), (direct_h + diffuse_h) / 1000, direct_h / 1000, diffuse_h / 1000,
+                 o.sky == "hosek" ? "; 320-720 nm only" : "", seconds);
   }
   return 0;
 }

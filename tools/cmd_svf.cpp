@@ -140,6 +140,7 @@ Runner setup(CLI::App& app) {
     const bool monte_carlo = job.engine->name() == "raycast" && job.engine->params().rays > 0;
     check_output_format(o->out.format, static_cast<int>(chosen.size()) + (monte_carlo ? 2 : 0),
                         o->out.creation_options);
+    check_output_name(o->output, o->out.format);
     if (n_check > 0 && job.engine->params().directions > kSvfCheckMaxDirections) {
       throw Error("--check-cells measures against the run's own sectors, at most " +
                   std::to_string(kSvfCheckMaxDirections) + " (this run has --directions " +
@@ -208,12 +209,7 @@ Runner setup(CLI::App& app) {
       }
       use_choice(job, *next, requested);
     }
-    job.metadata["EDGE_CELLS"] = std::to_string(p.edge_cells);
-    if (p.edge_cells > 0) {
-      job.metadata["EDGE_NOTE"] = std::to_string(p.edge_cells) + " cells have search circles leaving the raster; " +
-                                  (job.edge == EdgeMode::open ? "terrain beyond the edge was taken as non-occluding"
-                                                              : "they were set to nodata");
-    }
+    record_edge_cells(job, p.edge_cells);
     WriteOptions wo;
     wo.format = o->out.format;
     wo.creation_options = o->out.creation_options;

@@ -44,7 +44,9 @@ void add_output_options(CLI::App& app, OutputOptions& o) {
   app.add_option("--of", o.format, "Output format, a GDAL driver short name (-of)")->capture_default_str();
   app.add_option("--co", o.creation_options,
                  "Creation option KEY=VALUE, repeatable (-co); GTiff defaults: "
-                 "TILED=YES COMPRESS=DEFLATE PREDICTOR=3");
+                 "TILED=YES COMPRESS=DEFLATE PREDICTOR=3")
+      ->allow_extra_args(false)  // one KEY=VALUE a time, as GDAL's -co: `-co A=1 IN OUT` leaves IN and OUT positional
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   app.add_flag("--overwrite", o.overwrite, "Replace an existing output");
   app.add_flag("-q,--quiet", o.quiet, "No progress on stderr");
   app.add_option("--threads", o.threads, "Worker threads (0 = all cores)")->check(non_negative_number());

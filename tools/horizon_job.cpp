@@ -142,6 +142,32 @@ void check_edge_leaves_cells(const HorizonJob& job, double radius_asked) {
               " is every cell of this raster; give a smaller --radius or leave --edge open");
 }
 
+// A radius shorter than a cell reaches no grid line from any cell centre, where the shared surface
+// can rise: every horizon would be open. RVT and SAGA count their radius in cells; here it is metres.
+void check_radius_reaches_a_neighbour(const HorizonJob& job, double radius_asked) {
+  const double radius = job.engine->radius();
+  if (!std::isfinite(radius)) return;
+  const Jacobian j = raster_centre_jacobian(job.terrain);
+  const double across = std::hypot(j.a, j.c), down = std::hypot(j.b, j.d);
+  if (radius >= std::min(across, down)) return;
+  throw Error("--radius " + number_text(radius_asked) + " m reaches no neighbouring cell (cells are " +
+              number_text(across) + " x " + number_text(down) +
+              " m), so every horizon would be open; the radius is in metres, not cells");
+}
+
+}  // namespace
+
+void record_edge_cells(HorizonJob& job, std::int64_t edge_cells) {
+  job.metadata["EDGE_CELLS"] = std::to_string(edge_cells);
+  if (edge_cells > 0) {
+    job.metadata["EDGE_NOTE"] =
+        std::to_string(edge_cells) + " cells have search circles leaving the raster; " +
+        (job.edge == EdgeMode::open ? "terrain beyond the edge was taken as non-occluding" : "they were set to nodata");
+  }
+}
+
+namespace {
+
 // The metadata of the method that runs (and of --max-error's choice), replacing the last one's.
 void record_method(HorizonJob& job, double max_error) {
   auto& m = job.metadata;
@@ -209,6 +235,7 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
     if (!path.empty()) check_output_writable(path, o.out.overwrite);
   }
   check_output_format(o.out.format, 1, o.out.creation_options);  // before the input is read; svf checks its bands
+  check_output_name(o.output, o.out.format);
   HorizonJob job;
   job.edge = o.edge == "nodata" ? EdgeMode::nodata : EdgeMode::open;
   std::string method = o.method;
@@ -231,7 +258,7 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   ro.z_scale = o.z_scale;
   ReadReport report;
   job.terrain = read_terrain(o.input, ro, &report);
-  if (report.undeclared_nan_cells > 0 && !o.out.quiet) {
+  if (report.undeclared_nan_cells > 0) {  // even under -q: it changes what the data say
     std::fprintf(stderr, "Warning: %lld NaN cells in '%s' are not the declared nodata value; treated as nodata\n",
                  static_cast<long long>(report.undeclared_nan_cells), o.input.c_str());
   }
@@ -244,6 +271,7 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   m["Z_SCALE"] = number_text(report.z_scale);
   m["HEIGHT_UNIT"] = report.height_unit;
   check_edge_leaves_cells(job, params.radius);
+  check_radius_reaches_a_neighbour(job, params.radius);
   // Auto decides only now, on the raster's reach: a refraction given for rasters where curvature
   // counts is accepted, but said to be unused here (even under -q: the user asked for it).
   if (o.app && o.app->count("--refraction") > 0 && job.engine->params().curvature == "auto" &&

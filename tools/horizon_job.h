@@ -59,4 +59,7 @@ void use_choice(HorizonJob& job, const AccuracyChoice& choice, double max_error)
 // Runs `work` with progress over the job's cells on stderr (unless the job is quiet).
 void with_progress(const HorizonJob& job, const std::function<void(ProgressCounter&)>& work);
 
+// EDGE_CELLS (and, where any, EDGE_NOTE: what --edge did with them) into the job's metadata.
+void record_edge_cells(HorizonJob& job, std::int64_t edge_cells);
+
 }  // namespace skyview::cli

@@ -117,6 +117,10 @@ void check_output_writable(const std::string& path, bool overwrite);
 // round or lose bands only at the end.
 void check_output_format(const std::string& format, int bands, const std::vector<std::string>& creation_options);
 
+// Refuses an output whose name does not end in an extension of the GDAL format it will be written
+// in (`out.png` written as a GeoTIFF, `svf.nc` without -of netCDF), for formats that name any.
+void check_output_name(const std::string& path, const std::string& format);
+
 // Refuses, before any computation, an output that is also an input or another output (by the
 // file it names: "./a.tif", a link to it and "a.tif" are one). Empty paths are left out.
 void check_outputs_apart(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs);
