@@ -28,6 +28,37 @@ class CliErrors : public ::testing::Test {
   std::string dir, good;
 };
 
+// GDAL's habits: -co takes one KEY=VALUE a time, so options may come before the files; an output
+// named for another format than it is written in is refused.
+TEST_F(CliErrors, GdalStyleOptionsBeforeTheFilesAndOutputsNamedForTheirFormat) {
+  const RunResult r = run_skyview("svf -co COMPRESS=LZW -co TILED=NO " + good + " " + dir + "/lzw.tif", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  init_gdal();
+  GDALDatasetUniquePtr ds(GDALDataset::Open((dir + "/lzw.tif").c_str(), GDAL_OF_RASTER));
+  ASSERT_TRUE(ds);
+  EXPECT_STREQ(ds->GetMetadataItem("COMPRESSION", "IMAGE_STRUCTURE"), "LZW");
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/svf.png", dir), "does not end in .tif or .tiff");
+  expect_one_line_error(run_skyview("horizon " + good + " " + dir + "/h.nc", dir), "give -of");
+  EXPECT_FALSE(std::filesystem::exists(dir + "/svf.png"));
+}
+
+// A radius shorter than a cell reaches no grid line: every horizon would be open.
+TEST_F(CliErrors, ARadiusShorterThanACellIsRefused) {
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/r.tif --method march --radius 0.5", dir),
+                        "reaches no neighbouring cell");
+  EXPECT_EQ(run_skyview("svf " + good + " " + dir + "/r1.tif --method march --radius 1", dir).exit_code, 0);
+}
+
+// Horizon outputs count the cells whose search leaves the raster, as the svf's do.
+TEST_F(CliErrors, HorizonOutputsCountTheirEdgeCells) {
+  ASSERT_EQ(run_skyview("horizon " + good + " " + dir + "/h.tif --radius 5 --directions 4", dir).exit_code, 0);
+  init_gdal();
+  GDALDatasetUniquePtr ds(GDALDataset::Open((dir + "/h.tif").c_str(), GDAL_OF_RASTER));
+  ASSERT_TRUE(ds);
+  // 21 x 21 cells of 1 m: those within 5 m of a side leave, the 11 x 11 around the centre do not.
+  EXPECT_STREQ(ds->GetMetadataItem("EDGE_CELLS"), std::to_string(21 * 21 - 11 * 11).c_str());
+}
+
 TEST_F(CliErrors, MissingFile) {
   expect_one_line_error(run_skyview("svf " + dir + "/nope.tif " + dir + "/o.tif", dir), "no such file");
 }
@@ -160,8 +191,9 @@ TEST_F(CliErrors, UndeclaredNanIsNodataWithAWarning) {
   t.heights(4, 4) = std::numeric_limits<float>::quiet_NaN();
   const std::string path = dir + "/nan.tif";
   write_terrain(path, t, {});
-  const RunResult r = run_skyview("svf " + path + " " + dir + "/o.tif", dir);
+  const RunResult r = run_skyview("svf " + path + " " + dir + "/o.tif", dir);  // -q: it changes the data, so said
   EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("Warning: 1 NaN cells"), std::string::npos) << r.err;
 }
 
 TEST_F(CliErrors, ZeroOrNegativeRadius) {

@@ -1,5 +1,6 @@
 // `skyview skymap` from the command line: a small run writes both bands and the preview; bad
 // input gives one error line and a non-zero exit.
+#include <gdal_priv.h>
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "sky_test_support.h"
+#include "skyview/raster_io.h"
 #include "temp_dir.h"
 
 namespace {
@@ -38,6 +40,22 @@ TEST(SkymapCli, WritesBandsAndPreview) {
   EXPECT_TRUE(std::filesystem::exists(out));
   EXPECT_TRUE(std::filesystem::exists(dir / "map.png"));
   EXPECT_EQ(run("--help").code, 0);
+  std::filesystem::remove_all(dir);
+}
+
+// Hošek–Wilkie's exposures cover its bands, 320-720 nm: the outputs and the summary line say so.
+TEST(SkymapCli, HosekWilkieExposuresSayTheirSpectrum) {
+  const std::filesystem::path dir = skyview::test::temp_dir("skymap-cli");
+  const std::string out = (dir / "hosek.tif").string();
+  const Result r = run(out + " --lat 30 --lon 0 --from 2023-06-21T00:00Z --to 2023-06-22T00:00Z --sky hosek --size 32");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("320-720 nm only"), std::string::npos) << r.output;
+  skyview::init_gdal();
+  GDALDatasetUniquePtr ds(GDALDataset::Open(out.c_str(), GDAL_OF_RASTER));
+  ASSERT_TRUE(ds);
+  const char* spectrum = ds->GetMetadataItem("SPECTRUM");
+  ASSERT_NE(spectrum, nullptr);
+  EXPECT_NE(std::string(spectrum).find("320-720 nm"), std::string::npos) << spectrum;
   std::filesystem::remove_all(dir);
 }
 
