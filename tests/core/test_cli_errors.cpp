@@ -187,10 +187,21 @@ TEST_F(CliErrors, InfiniteHeights) {
 }
 
 TEST_F(CliErrors, UndeclaredNanIsNodataWithAWarning) {
-  Terrain t = rasterize(circular_pit(5, 5), 9, 9, local_grid(9, 9, 1.0));
-  t.heights(4, 4) = std::numeric_limits<float>::quiet_NaN();
+  // A NaN cell in a band whose nodata value is -9999 (write_terrain would write the NaN as -9999).
   const std::string path = dir + "/nan.tif";
-  write_terrain(path, t, {});
+  {
+    init_gdal();
+    GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName("GTiff");
+    GDALDatasetUniquePtr ds(gtiff->Create(path.c_str(), 9, 9, 1, GDT_Float32, nullptr));
+    double gt[6] = {500000, 1, 0, 5000009, 0, -1};
+    ds->SetGeoTransform(gt);
+    ds->SetProjection(test::wkt_of("EPSG:32633").c_str());
+    std::vector<float> z(81, 10.0f);
+    z[40] = std::numeric_limits<float>::quiet_NaN();
+    GDALRasterBand* band = ds->GetRasterBand(1);
+    band->SetNoDataValue(-9999);
+    ASSERT_EQ(band->RasterIO(GF_Write, 0, 0, 9, 9, z.data(), 9, 9, GDT_Float32, 0, 0), CE_None);
+  }
   const RunResult r = run_skyview("svf " + path + " " + dir + "/o.tif", dir);  // -q: it changes the data, so said
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("Warning: 1 NaN cells"), std::string::npos) << r.err;
