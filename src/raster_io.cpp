@@ -123,7 +123,8 @@ RawBand read_raw_band(const std::string& path, int band_index) {
   r.values.resize(static_cast<std::size_t>(r.width) * r.height);
   if (band->RasterIO(GF_Read, 0, 0, r.width, r.height, r.values.data(), r.width, r.height, GDT_Float64, 0, 0) !=
       CE_None) {
-    throw Error("cannot read band " + std::to_string(band_index) + " of '" + path + "': " + last_gdal_error());
+    throw Error("cannot read band " + std::to_string(band_index) + " of '" + path +
+                "': " + last_gdal_error("GDAL gives no reason; the file may be truncated or corrupt"));
   }
   r.nodata = band->GetNoDataValue(&r.has_nodata);
   // Packed rasters (Int16 with a scale of 0.01, say) hold value = raw * scale + offset: unpack them,
@@ -295,7 +296,9 @@ void check_outputs_apart(const std::vector<std::string>& outputs, const std::vec
     }
     for (std::size_t j = 0; j < i; ++j) {
       if (!outputs[j].empty() && same_file(outputs[i], outputs[j])) {
-        throw Error("'" + outputs[j] + "' and '" + outputs[i] + "' name the same output file");
+        throw Error(outputs[j] == outputs[i]
+                        ? "two outputs are both '" + outputs[i] + "'; give each its own file"
+                        : "'" + outputs[j] + "' and '" + outputs[i] + "' name the same output file");
       }
     }
   }
@@ -365,6 +368,12 @@ CPLStringList creation_options(const std::string& format, GDALDataType type, con
     opts.SetNameValue("INTERLEAVE", "BAND");
     // Compress blocks on as many threads as the run may use (--threads): single-threaded DEFLATE
     // was a tenth of skyview svf's wall time on a 2000 x 2000 raster with 2 cores.
+    opts.SetNameValue("NUM_THREADS", run_threads_text().c_str());
+  }
+  if (format == "COG") {  // its own default, LZW without a predictor, packs float bands worse
+    opts.SetNameValue("COMPRESS", "DEFLATE");
+    opts.SetNameValue("PREDICTOR", "YES");
+    opts.SetNameValue("BIGTIFF", "IF_SAFER");
     opts.SetNameValue("NUM_THREADS", run_threads_text().c_str());
   }
   CPLStringList users;

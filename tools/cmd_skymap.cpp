@@ -19,6 +19,7 @@
 #include "skyview/sky_model.h"
 #include "skyview/sky_models.h"
 #include "skyview/time_parse.h"
+#include "skyview/version.h"
 
 namespace skyview::cli {
 namespace {
@@ -171,7 +172,8 @@ int run(const SkymapOptions& o) {
   }
   meta["DIRECT_HORIZONTAL_WH_M2"] = number_text(direct_h);
   meta["DIFFUSE_HORIZONTAL_WH_M2"] = number_text(diffuse_h);
-  meta["COMMAND"] = command_line();
+  meta["SKYVIEW_VERSION"] = version();
+  meta["SKYVIEW_COMMAND"] = command_line();
 
   WriteOptions wo;
   wo.format = o.out.format;

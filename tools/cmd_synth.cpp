@@ -4,6 +4,7 @@
 #include "skyview/raster_io.h"
 #include "skyview/synthetic.h"
 #include "skyview/synthetic_district.h"
+#include "skyview/version.h"
 
 #include <cpl_conv.h>
 #include <ogr_spatialref.h>
@@ -110,7 +111,7 @@ Runner setup(CLI::App& app) {
     wo.format = o->out.format;
     wo.creation_options = o->out.creation_options;
     wo.overwrite = o->out.overwrite;
-    wo.metadata = {{"SKYVIEW_COMMAND", command_line()}, {"SYNTHETIC_KIND", o->kind}};
+    wo.metadata = {{"SKYVIEW_VERSION", version()}, {"SKYVIEW_COMMAND", command_line()}, {"SYNTHETIC_KIND", o->kind}};
     write_terrain(o->output, t, wo);
     return 0;
   };

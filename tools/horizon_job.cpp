@@ -98,7 +98,8 @@ void check_options_apply(const HorizonJobOptions& o, const std::string& method) 
   }
   if (o.azimuths == "grid-lines" && o.app->count("--azimuth-origin") > 0 && o.azimuth_origin != "grid")
     throw Error("--azimuths grid-lines starts on grid north: leave out --azimuth-origin " + o.azimuth_origin);
-  const std::string used_by = " (this run uses " + method + ")";
+  const std::string used_by = " (this run uses " + method +
+                              (o.params.radius > 0.0 ? " with --radius " + number_text(o.params.radius) : "") + ")";
   refuse_unused(*o.app, "--rays", method == "raycast", "--method raycast" + used_by);
   refuse_unused(*o.app, "--seed", method == "sampled", "--method sampled" + used_by);
   // With a radius the sweep reads every crossing within it: no near steps to count.

@@ -45,7 +45,8 @@ std::string one_line(const char* message) {
 int main(int argc, char** argv) {
   using namespace skyview;
   cli::set_command_line(argc, argv);
-  CLI::App app{"skyview " + version() + ": horizon angles, sky-view factor and solar exposure from elevation rasters"};
+  CLI::App app{"skyview " + version() + ": horizon angles, sky-view factor and solar exposure from elevation rasters",
+               "skyview"};
   app.set_version_flag("--version", "skyview " + version());
   app.require_subcommand(1);
   std::string active;

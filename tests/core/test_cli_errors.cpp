@@ -444,6 +444,8 @@ TEST_F(CliErrors, OutputsNeverReplaceInputsOrOtherOutputs) {
   expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --preview " + good + " --overwrite", dir),
                         "is also an input");
   expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --preview " + dir + "/o.tif", dir),
+                        "two outputs are both");
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --preview " + dir + "/./o.tif", dir),
                         "name the same output file");
   EXPECT_FALSE(std::filesystem::exists(dir + "/o.tif"));
   EXPECT_EQ(std::filesystem::file_size(good), size);
@@ -487,7 +489,8 @@ TEST_F(CliErrors, OptionsTheRunWouldNotUseAreRefused) {
       {"svf " + good + o + " --method march --samples 8",
        "--samples applies only to --method sampled, or sweep at unlimited radius (this run uses march)"},
       {"svf " + good + o + " --radius 10 --samples 7",
-       "--samples applies only to --method sampled, or sweep at unlimited radius (this run uses sweep)"},
+       "--samples applies only to --method sampled, or sweep at unlimited radius (this run uses sweep with --radius "
+       "10)"},
       {"svf " + good + o + " --curvature off --refraction 0.2",
        "--refraction applies only to runs with Earth curvature"},
       {"svf " + good + o + " --method raycast --refraction 0.2",
@@ -501,7 +504,7 @@ TEST_F(CliErrors, OptionsTheRunWouldNotUseAreRefused) {
       {"svf " + good + o + " --max-error 0.02 --method march", "--method applies only to runs without --max-error"},
       {"svf " + good + o + " --max-error 0.02 --far-lines 1", "--far-lines applies only to runs without --max-error"},
       {"svf " + good + o + " --far-lines 1 --radius 50",
-       "--far-lines applies only to --method sweep at unlimited radius (this run uses sweep)"},
+       "--far-lines applies only to --method sweep at unlimited radius (this run uses sweep with --radius 50)"},
       {"horizon " + good + o + " --method march --far-lines 2",
        "--far-lines applies only to --method sweep at unlimited radius (this run uses march)"},
       {"horizon " + good + o + " --method raycast --rays 64", "--rays applies only to skyview svf"},
