@@ -75,10 +75,21 @@ int main(int argc, char** argv) {
     if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);  // --help, --version
     // Usage errors, like every other error, are one line naming the subcommand.
     std::string name = "skyview";
+    std::string greedy;  // options given that take every value after them, as lists do
     for (const auto& [sub, run] : runners) {
-      if (sub->parsed()) name += " " + sub->get_name();
+      if (!sub->parsed()) continue;
+      name += " " + sub->get_name();
+      for (const CLI::Option* opt : sub->get_options()) {
+        if (opt->count() > 0 && opt->get_items_expected_max() > 1 && opt->get_allow_extra_args())
+          greedy += (greedy.empty() ? "" : ", ") + opt->get_name();
+      }
     }
-    std::fprintf(stderr, "%s: error: %s (see --help)\n", name.c_str(), one_line(e.what()).c_str());
+    // A missing file after a list option is the list having taken it: say so.
+    const std::string hint =
+        dynamic_cast<const CLI::RequiredError*>(&e) && !greedy.empty()
+            ? "; " + greedy + " takes every value after it, so give the files first (or end the list with --)"
+            : "";
+    std::fprintf(stderr, "%s: error: %s%s (see --help)\n", name.c_str(), one_line(e.what()).c_str(), hint.c_str());
     return 2;
   }
   init_gdal();

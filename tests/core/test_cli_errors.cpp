@@ -88,6 +88,16 @@ TEST_F(CliErrors, SynthAndBenchRefuseWhatTheyCannotMake) {
   EXPECT_FALSE(std::filesystem::exists(dir + "/b"));
 }
 
+// A list option (--points) takes every value after it: an output given after one is taken too, and
+// the error says why; `--` ends the list.
+TEST_F(CliErrors, AListOptionBeforeTheOutputSaysItTookIt) {
+  ASSERT_EQ(run_skyview("synth lidar " + dir + "/d.las --size 64", dir).exit_code, 0);
+  expect_one_line_error(run_skyview("dsm --points " + dir + "/d.las " + dir + "/dsm.tif", dir),
+                        "--points takes every value after it", 2);
+  EXPECT_EQ(run_skyview("dsm --points " + dir + "/d.las -- " + dir + "/dsm.tif", dir).exit_code, 0);
+  EXPECT_TRUE(std::filesystem::exists(dir + "/dsm.tif"));
+}
+
 // GROUND_FROM says which returns were taken as ground: class 2 with --ground-only on a classified
 // cloud, none where no ground was asked for (it read "all returns" until Dec 3, with --classes 6 too).
 TEST_F(CliErrors, DsmSaysWhichReturnsWereGround) {
