@@ -171,6 +171,8 @@ RasterBand read_band(const std::string& path, int band_index) {
   out.georef = georeference_of(*raw.ds);
   const char* description = raw.ds->GetRasterBand(band_index)->GetDescription();
   out.description = description ? description : "";
+  const char* unit = raw.ds->GetRasterBand(band_index)->GetUnitType();
+  out.unit = unit ? unit : "";
   return out;
 }
 

@@ -100,6 +100,14 @@ Runner setup(CLI::App& app) {
     RasterBand value = read_band(o->value, o->band);
     const RasterBand reference = read_band(o->reference, ref_band);
     check_same_grid({o->value, value.values, value.georef}, {o->reference, reference.values, reference.georef});
+    // Openness in degrees against an svf, say: the statistics would be of nothing. Said even under -q
+    // (it goes to stderr); --scale and --offset are how a deliberate conversion is given.
+    if (!value.unit.empty() && !reference.unit.empty() && value.unit != reference.unit && o->scale == 1.0 &&
+        o->offset == 0.0) {
+      std::fprintf(stderr,
+                   "Warning: the bands' units differ ('%s' against '%s'); --scale and --offset convert the first\n",
+                   value.unit.c_str(), reference.unit.c_str());
+    }
     for (float& v : value.values.values()) v = static_cast<float>(v * o->scale + o->offset);
     std::int64_t steep = 0;
     if (o->max_slope >= 0.0) {

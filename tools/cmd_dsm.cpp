@@ -1,4 +1,5 @@
 // skyview dsm: one height raster from DEMs, LiDAR point clouds and building footprints.
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
@@ -142,6 +143,17 @@ Runner setup(CLI::App& app) {
                    static_cast<unsigned long long>(rep.points_removed_as_noise), rep.footprints_burned,
                    rep.footprints_from_cloud, rep.footprints_repaired, rep.footprints_skipped,
                    static_cast<long long>(rep.cells_filled));
+    }
+    // A sparse cloud on the default 1-unit grid (106 returns over 3249 x 4386 cells of a foot) writes
+    // a raster of holes: say so and what to change.
+    const auto holding =
+        std::count_if(r.dsm.values().begin(), r.dsm.values().end(), [](float v) { return !std::isnan(v); });
+    const double held = static_cast<double>(holding) / static_cast<double>(r.dsm.size());
+    if (!o->out.quiet && !o->dsm.points.empty() && !o->dsm.fill && held < 0.1) {
+      std::fprintf(stderr,
+                   "Warning: only %.2g%% of the %dx%d cells hold a height: the grid is much finer than the returns; "
+                   "give a coarser --res, or --fill\n",
+                   100.0 * held, r.dsm.width(), r.dsm.height());
     }
     if (rep.footprints_skipped > 0) {
       std::fprintf(stderr,

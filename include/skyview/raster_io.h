@@ -43,6 +43,7 @@ struct RasterBand {
   Grid<float> values;
   GeoReference georef;
   std::string description;  // GDAL's band description ("svf" in skyview's outputs), may be empty
+  std::string unit;         // GDAL's unit type ("1", "degrees" in skyview's outputs), may be empty
 };
 RasterBand read_band(const std::string& path, int band);
 

@@ -10,6 +10,7 @@
 
 #include "cli_run.h"
 #include "skyview/error_stats.h"
+#include "skyview/las_file.h"
 #include "skyview/svf_check.h"
 #include "test_support.h"
 
@@ -96,6 +97,22 @@ TEST_F(CliErrors, AListOptionBeforeTheOutputSaysItTookIt) {
                         "--points takes every value after it", 2);
   EXPECT_EQ(run_skyview("dsm --points " + dir + "/d.las -- " + dir + "/dsm.tif", dir).exit_code, 0);
   EXPECT_TRUE(std::filesystem::exists(dir + "/dsm.tif"));
+}
+
+// A cloud far sparser than the grid leaves a raster of holes: said, with what to change (not under
+// -q, so this one runs without it).
+TEST_F(CliErrors, ASparseCloudOnAFineGridIsSaid) {
+  write_las(dir + "/sparse.las", {{0.5, 0.5, 1.0, 0, 1, 1, 2}, {99.5, 99.5, 2.0, 0, 1, 1, 2}}, [] {
+    LasWriteOptions o;
+    o.crs_wkt = wkt_of("EPSG:32633");
+    return o;
+  }());
+  const std::string cmd =
+      std::string(SKYVIEW_EXE) + " dsm " + dir + "/sparse.tif --points " + dir + "/sparse.las 2>" + dir + "/err.txt";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  std::ifstream in(dir + "/err.txt");
+  const std::string err((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(err.find("cells hold a height: the grid is much finer than the returns"), std::string::npos) << err;
 }
 
 // GROUND_FROM says which returns were taken as ground: class 2 with --ground-only on a classified

@@ -209,6 +209,20 @@ TEST_F(CompareCli, MaxSlopeCountsOnlyCellsValidInBoth) {
 }
 
 // The JSON report is an output like any other: an existing one is kept unless --overwrite.
+// Bands in different units compare nothing: said, unless --scale or --offset converts them.
+TEST_F(CompareCli, BandsInDifferentUnitsAreSaid) {
+  write_bands(dir + "/degrees.tif", k.value.width(), k.value.height(), georef,
+              {{"openness_positive", "degrees", k.value.data(), {}}}, {});
+  const RunResult plain = run(dir + "/degrees.tif " + dir + "/reference.tif");
+  EXPECT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_NE(plain.err.find("Warning: the bands' units differ ('degrees' against '1')"), std::string::npos) << plain.err;
+  const RunResult scaled = run(dir + "/degrees.tif " + dir + "/reference.tif --scale 0.0111");
+  EXPECT_EQ(scaled.exit_code, 0) << scaled.err;
+  EXPECT_EQ(scaled.err.find("units differ"), std::string::npos) << scaled.err;
+  const RunResult same = run(dir + "/value.tif " + dir + "/reference.tif");
+  EXPECT_EQ(same.err.find("units differ"), std::string::npos) << same.err;
+}
+
 TEST_F(CompareCli, KeepsAnExistingJsonUnlessOverwrite) {
   const std::string json = dir + "/kept.json";
   std::ofstream(json) << "earlier";
