@@ -104,19 +104,9 @@ GDALDatasetUniquePtr open_raster(const std::string& path) {
 }
 
 // Metres per unit of the footprints' height fields (DsmOptions::footprint_z_scale).
-double footprint_height_unit(const DsmOptions& o, const OGRSpatialReference* crs) {
-  if (o.footprint_z_scale > 0.0) return o.footprint_z_scale;
-  if (o.height_field.empty() && o.base_field.empty()) return 1.0;
-  if (crs && crs->IsProjected()) {
-    const char* name = nullptr;
-    const double metres = crs->GetLinearUnits(&name);
-    if (std::abs(metres - 1.0) > 1e-12) {
-      throw Error("'" + o.footprints + "' is in " + (name ? name : "a unit other than the metre") +
-                  " and its height fields carry no unit: give --footprint-z-scale, metres per unit (" +
-                  number_text(metres) + " if the heights are in " + (name ? name : "that unit") + ", 1 if in metres)");
-    }
-  }
-  return 1.0;
+HeightUnit footprint_height_unit(const DsmOptions& o, const OGRSpatialReference* crs) {
+  if (o.footprint_z_scale > 0.0) return {o.footprint_z_scale, "--footprint-z-scale"};
+  return unstated_height_unit(crs, o.footprints, "--footprint-z-scale");
 }
 
 }  // namespace
@@ -289,10 +279,12 @@ DsmResult build_dsm(const DsmOptions& o) {
   if (layer) {
     TransformPtr t;
     if (layer->GetSpatialRef()) t = transform(*layer->GetSpatialRef(), target, "'" + o.footprints + "'");
-    const double fp_scale = footprint_height_unit(o, layer->GetSpatialRef());
+    // Only height fields have a unit to find (footprints that take their heights from returns do not).
+    double fp_scale = 1.0;
     if (!o.height_field.empty() || !o.base_field.empty()) {
-      out.report.height_units.push_back(
-          "'" + o.footprints + "': " + (o.footprint_z_scale > 0.0 ? "--footprint-z-scale" : "metres (assumed)"));
+      const HeightUnit unit = footprint_height_unit(o, layer->GetSpatialRef());
+      fp_scale = unit.metres;
+      out.report.height_units.push_back("'" + o.footprints + "': " + unit.source);
     }
     GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
     GDALDatasetUniquePtr ids(mem->Create("", width, height, 1, GDT_Float32, nullptr));

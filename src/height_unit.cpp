@@ -3,19 +3,17 @@
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
-#include <algorithm>
-#include <cctype>
 #include <cmath>
 
 #include "skyview/error.h"
+#include "skyview/lowercase.h"
 #include "skyview/number_text.h"
 
 namespace skyview {
 namespace {
 
 std::string lower_trimmed(std::string_view name) {
-  std::string s;
-  for (const char c : name) s += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string s = lowercase(name);
   const auto first = s.find_first_not_of(" \t");
   if (first == std::string::npos) return "";
   return s.substr(first, s.find_last_not_of(" \t") - first + 1);
@@ -96,21 +94,26 @@ HeightUnit height_unit(GDALRasterBand& band, const OGRSpatialReference* crs, dou
   const std::string unit = band.GetUnitType() ? band.GetUnitType() : "";
   const std::string key = lower_trimmed(unit);
   const bool stated = !key.empty() && key != "unknown" && key != "none" && key != "undefined";
-  if (stated && metres_per_height_unit(unit) > 0.0) return {metres_per_height_unit(unit), "band unit '" + unit + "'"};
+  if (const double metres = stated ? metres_per_height_unit(unit) : 0.0; metres > 0.0)
+    return {metres, "band unit '" + unit + "'"};
   HeightUnit vertical;
   if (crs && vertical_unit(*crs, vertical)) return vertical;
   if (stated) {
     throw Error("'" + path + "' gives its heights in '" + unit +
                 "', a unit skyview does not know; give --z-scale (metres per unit)");
   }
+  return unstated_height_unit(crs, path, "--z-scale");
+}
+
+HeightUnit unstated_height_unit(const OGRSpatialReference* crs, const std::string& path, const std::string& option) {
   if (!crs) return {1.0, "metres (assumed: no CRS)"};
   if (crs->IsGeographic()) return {1.0, "metres (assumed: geographic CRS, no height unit stated)"};
   const char* name = nullptr;
   const double metres = crs->GetLinearUnits(&name);
   if (is_metre(metres)) return {1.0, "metres (assumed: the CRS is in metres, no height unit stated)"};
   throw Error("'" + path + "' does not say in which unit its heights are, and its CRS is in " +
-              (name ? name : "a unit other than the metre") + " (" + number_text(metres) +
-              " m): give --z-scale, metres per height unit (" + number_text(metres) + " if the heights are in " +
+              (name ? name : "a unit other than the metre") + " (" + number_text(metres) + " m): give " + option +
+              ", metres per height unit (" + number_text(metres) + " if the heights are in " +
               (name ? name : "that unit") + ", 1 if in metres)");
 }
 

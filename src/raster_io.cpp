@@ -21,6 +21,7 @@
 #include "netcdf_names.h"
 #include "skyview/error.h"
 #include "skyview/height_unit.h"
+#include "skyview/lowercase.h"
 
 namespace skyview {
 
@@ -177,7 +178,6 @@ RasterBand read_band(const std::string& path, int band_index) {
 }
 
 Terrain read_terrain(const std::string& path, const ReadOptions& options, ReadReport* report) {
-  if (!(options.z_scale >= 0.0) || !std::isfinite(options.z_scale)) throw Error("--z-scale must be a positive number");
   RawBand raw = read_raw_band(path, options.band);
   const HeightUnit unit =
       height_unit(*raw.ds->GetRasterBand(options.band), raw.ds->GetSpatialRef(), options.z_scale, path);
@@ -360,24 +360,22 @@ GDALDriver* output_driver(const std::string& format) {
 CPLStringList creation_options(const std::string& format, GDALDataType type, const std::vector<std::string>& user,
                                int rows_at_once = 0) {
   CPLStringList opts;
+  // GeoTIFFs, cloud-optimised ones too (whose own default, LZW without a predictor, packs float bands
+  // worse): DEFLATE with a predictor, compressed on as many threads as the run may use (--threads:
+  // single-threaded DEFLATE was a tenth of skyview svf's wall time on a 2000 x 2000 raster with 2 cores).
+  if (format == "GTiff" || format == "COG") {
+    opts.SetNameValue("COMPRESS", "DEFLATE");
+    opts.SetNameValue("BIGTIFF", "IF_SAFER");
+    opts.SetNameValue("NUM_THREADS", run_threads_text().c_str());
+  }
   if (format == "GTiff") {
     opts.SetNameValue("TILED", "YES");
-    opts.SetNameValue("COMPRESS", "DEFLATE");
     opts.SetNameValue("PREDICTOR", type == GDT_Float32 ? "3" : "2");
-    opts.SetNameValue("BIGTIFF", "IF_SAFER");
     // Bands are written one after another (BandWriter): with pixel interleaving every tile would
     // hold all bands and be compressed again as each band arrives.
     opts.SetNameValue("INTERLEAVE", "BAND");
-    // Compress blocks on as many threads as the run may use (--threads): single-threaded DEFLATE
-    // was a tenth of skyview svf's wall time on a 2000 x 2000 raster with 2 cores.
-    opts.SetNameValue("NUM_THREADS", run_threads_text().c_str());
   }
-  if (format == "COG") {  // its own default, LZW without a predictor, packs float bands worse
-    opts.SetNameValue("COMPRESS", "DEFLATE");
-    opts.SetNameValue("PREDICTOR", "YES");
-    opts.SetNameValue("BIGTIFF", "IF_SAFER");
-    opts.SetNameValue("NUM_THREADS", run_threads_text().c_str());
-  }
+  if (format == "COG") opts.SetNameValue("PREDICTOR", "YES");  // COG picks the float predictor itself
   CPLStringList users;
   for (const auto& kv : user) {
     const auto eq = kv.find('=');
@@ -474,23 +472,15 @@ GDALRasterBand* band_of(GDALDataset* ds, int index, const std::string& path) {
   return ds->GetRasterBand(index + 1);
 }
 
-}  // namespace
-
-void check_output_name(const std::string& path, const std::string& format) {
-  init_gdal();
-  GDALDriver* driver = output_driver(format);
+// check_output_format's test of the name.
+void check_output_name(const std::string& path, const std::string& format, GDALDriver* driver) {
   std::vector<std::string> extensions;
   std::istringstream names(driver->GetMetadataItem(GDAL_DMD_EXTENSIONS)  ? driver->GetMetadataItem(GDAL_DMD_EXTENSIONS)
                            : driver->GetMetadataItem(GDAL_DMD_EXTENSION) ? driver->GetMetadataItem(GDAL_DMD_EXTENSION)
                                                                          : "");
-  for (std::string e; names >> e;) {
-    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
-    extensions.push_back("." + e);
-  }
+  for (std::string e; names >> e;) extensions.push_back(lowercase("." + e));
   if (extensions.empty()) return;  // the format names no extension
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (std::find(extensions.begin(), extensions.end(), ext) != extensions.end()) return;
+  if (std::find(extensions.begin(), extensions.end(), lowercase_extension(path)) != extensions.end()) return;
   std::string list;
   for (std::size_t i = 0; i < extensions.size(); ++i)
     list += (i == 0 ? "" : i + 1 == extensions.size() ? " or " : ", ") + extensions[i];
@@ -498,9 +488,13 @@ void check_output_name(const std::string& path, const std::string& format) {
               "' names its files; rename it, or give -of for the format its name says");
 }
 
-void check_output_format(const std::string& format, int bands, const std::vector<std::string>& user_options) {
+}  // namespace
+
+void check_output_format(const std::string& path, const std::string& format, int bands,
+                         const std::vector<std::string>& user_options) {
   init_gdal();
   GDALDriver* driver = output_driver(format);
+  check_output_name(path, format, driver);
   // A format that cannot hold float32 would round svf to bytes with only a GDAL warning.
   if (const char* types = driver->GetMetadataItem(GDAL_DMD_CREATIONDATATYPES);
       types && !std::strstr(types, "Float32")) {
@@ -599,7 +593,7 @@ BandWriter::BandWriter(const std::string& path, int width, int height, int bands
   s.width = width, s.height = height;
   s.options = options;
   check_output_writable(path, options.overwrite);
-  check_output_format(options.format, bands, options.creation_options);
+  check_output_format(path, options.format, bands, options.creation_options);
   s.driver = output_driver(options.format);
   s.direct = CSLFetchBoolean(s.driver->GetMetadata(), GDAL_DCAP_CREATE, FALSE);
   if (s.direct) {

@@ -15,6 +15,7 @@
 #include <system_error>
 
 #include "skyview/error.h"
+#include "skyview/lowercase.h"
 #include "skyview/number_text.h"
 #include "skyview/raster_io.h"
 
@@ -33,11 +34,6 @@ bool inside(const std::vector<std::array<double, 2>>& ring, double x, double y) 
 
 std::vector<std::array<double, 2>> box(double x0, double y0, double x1, double y1) {
   return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-}
-
-std::string lowercase(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
 }
 
 // GDAL's last message, or a fallback where it said nothing.

@@ -91,10 +91,11 @@ Runner setup(CLI::App& app) {
     inputs.push_back(o->dsm.footprints);
     check_outputs_apart({o->output, o->dtm}, inputs);
     check_output_writable(o->output, o->out.overwrite);
-    check_output_format(o->out.format, 1, o->out.creation_options);
-    check_output_name(o->output, o->out.format);
-    if (!o->dtm.empty()) check_output_name(o->dtm, o->out.format);
-    if (!o->dtm.empty()) check_output_writable(o->dtm, o->out.overwrite);
+    check_output_format(o->output, o->out.format, 1, o->out.creation_options);
+    if (!o->dtm.empty()) {
+      check_output_writable(o->dtm, o->out.overwrite);
+      check_output_format(o->dtm, o->out.format, 1, o->out.creation_options);
+    }
     o->dsm.want_dtm = !o->dtm.empty();
     if (!o->te.empty()) o->dsm.te = std::array<double, 4>{o->te[0], o->te[1], o->te[2], o->te[3]};
     std::stringstream in(o->classes);

@@ -72,8 +72,7 @@ int run(const SkymapOptions& o) {
   if (!preview.empty() && preview == o.output) throw Error("the preview would overwrite OUT; give --preview");
   check_outputs_apart({o.output, preview}, {o.epw});
   check_output_writable(o.output, o.out.overwrite);
-  check_output_format(o.out.format, 2, o.out.creation_options);
-  check_output_name(o.output, o.out.format);
+  check_output_format(o.output, o.out.format, 2, o.out.creation_options);
   if (!preview.empty()) check_output_writable(preview, o.out.overwrite);
   const auto sky = make_sky(o);
 

@@ -138,9 +138,8 @@ Runner setup(CLI::App& app) {
     HorizonJob job = prepare_horizon_job(opts, "svf", {*preview});
     if (!preview->empty()) require_extension(*preview, {".png"}, "--preview");
     const bool monte_carlo = job.engine->name() == "raycast" && job.engine->params().rays > 0;
-    check_output_format(o->out.format, static_cast<int>(chosen.size()) + (monte_carlo ? 2 : 0),
+    check_output_format(o->output, o->out.format, static_cast<int>(chosen.size()) + (monte_carlo ? 2 : 0),
                         o->out.creation_options);
-    check_output_name(o->output, o->out.format);
     if (n_check > 0 && job.engine->params().directions > kSvfCheckMaxDirections) {
       throw Error("--check-cells measures against the run's own sectors, at most " +
                   std::to_string(kSvfCheckMaxDirections) + " (this run has --directions " +

@@ -59,10 +59,7 @@ Runner setup(CLI::App& app) {
                   "city, mountains, lidar and footprints");
     ThreadLimit limit(o->out.threads);
     check_output_writable(o->output, o->out.overwrite);
-    if (raster) {
-      check_output_format(o->out.format, 1, o->out.creation_options);
-      check_output_name(o->output, o->out.format);
-    }
+    if (raster) check_output_format(o->output, o->out.format, 1, o->out.creation_options);
     GeoReference g = local_grid(o->size, o->size, o->cell);
     g.geotransform[0] += o->x0;
     g.geotransform[3] += o->y0;

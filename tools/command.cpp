@@ -8,6 +8,7 @@
 #include <functional>
 
 #include "skyview/error.h"
+#include "skyview/lowercase.h"
 
 #include <tbb/global_control.h>
 
@@ -57,8 +58,7 @@ void refuse_unused(const CLI::App& app, const std::string& option, bool used, co
 }
 
 void require_extension(const std::string& path, const std::vector<std::string>& extensions, const std::string& what) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = lowercase_extension(path);
   if (std::find(extensions.begin(), extensions.end(), ext) != extensions.end()) return;
   std::string list;
   for (const std::string& e : extensions) list += (list.empty() ? "" : ", ") + e;

@@ -148,26 +148,11 @@ void check_edge_leaves_cells(const HorizonJob& job, double radius_asked) {
 void check_radius_reaches_a_neighbour(const HorizonJob& job, double radius_asked) {
   const double radius = job.engine->radius();
   if (!std::isfinite(radius)) return;
-  const Jacobian j = raster_centre_jacobian(job.terrain);
-  const double across = std::hypot(j.a, j.c), down = std::hypot(j.b, j.d);
-  if (radius >= std::min(across, down)) return;
-  throw Error("--radius " + number_text(radius_asked) + " m reaches no neighbouring cell (cells are " +
-              number_text(across) + " x " + number_text(down) +
-              " m), so every horizon would be open; the radius is in metres, not cells");
+  const double cell = raster_centre_jacobian(job.terrain).min_cell_size();
+  if (radius >= cell) return;
+  throw Error("--radius " + number_text(radius_asked) + " m reaches no neighbouring cell (the shorter cell side is " +
+              number_text(cell) + " m), so every horizon would be open; the radius is in metres, not cells");
 }
-
-}  // namespace
-
-void record_edge_cells(HorizonJob& job, std::int64_t edge_cells) {
-  job.metadata["EDGE_CELLS"] = std::to_string(edge_cells);
-  if (edge_cells > 0) {
-    job.metadata["EDGE_NOTE"] =
-        std::to_string(edge_cells) + " cells have search circles leaving the raster; " +
-        (job.edge == EdgeMode::open ? "terrain beyond the edge was taken as non-occluding" : "they were set to nodata");
-  }
-}
-
-namespace {
 
 // The metadata of the method that runs (and of --max-error's choice), replacing the last one's.
 void record_method(HorizonJob& job, double max_error) {
@@ -235,8 +220,8 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   for (const std::string& path : more_outputs) {
     if (!path.empty()) check_output_writable(path, o.out.overwrite);
   }
-  check_output_format(o.out.format, 1, o.out.creation_options);  // before the input is read; svf checks its bands
-  check_output_name(o.output, o.out.format);
+  // Before the input is read; svf checks its bands again.
+  check_output_format(o.output, o.out.format, 1, o.out.creation_options);
   HorizonJob job;
   job.edge = o.edge == "nodata" ? EdgeMode::nodata : EdgeMode::open;
   std::string method = o.method;
@@ -295,6 +280,15 @@ void with_progress(const HorizonJob& job, const std::function<void(ProgressCount
   progress.set_total(static_cast<std::uint64_t>(job.terrain.width()) * job.terrain.height());
   ProgressReporter reporter(progress, job.quiet);
   work(progress);
+}
+
+void record_edge_cells(HorizonJob& job, std::int64_t edge_cells) {
+  job.metadata["EDGE_CELLS"] = std::to_string(edge_cells);
+  if (edge_cells > 0) {
+    job.metadata["EDGE_NOTE"] =
+        std::to_string(edge_cells) + " cells have search circles leaving the raster; " +
+        (job.edge == EdgeMode::open ? "terrain beyond the edge was taken as non-occluding" : "they were set to nodata");
+  }
 }
 
 }  // namespace skyview::cli

@@ -49,7 +49,7 @@ struct DsmReport {
   std::string ground_source;  // "class 2" or "morphological filter" with --ground-only
   std::int64_t cells_from_points = 0, cells_filled = 0;
   int footprints_burned = 0, footprints_repaired = 0, footprints_skipped = 0, footprints_from_cloud = 0;
-  std::vector<std::string> height_units;  // per DEM and cloud: "'path': what gave its heights' unit"
+  std::vector<std::string> height_units;  // per DEM, cloud and footprint layer with height fields
 };
 
 struct DsmResult {

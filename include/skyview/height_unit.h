@@ -28,6 +28,11 @@ double metres_per_height_unit(std::string_view name);
 // know (with no vertical CRS to say instead) or cannot assume.
 HeightUnit height_unit(GDALRasterBand& band, const OGRSpatialReference* crs, double given, const std::string& path);
 
+// Metres for heights that state no unit, where `crs` allows that: none, geographic, or in metres.
+// Elsewhere (a feet CRS) throws, naming `path` and the `option` that gives the unit: raster heights
+// (height_unit) and footprint height fields, which carry no unit at all.
+HeightUnit unstated_height_unit(const OGRSpatialReference* crs, const std::string& path, const std::string& option);
+
 // The same for a point cloud's z, whose x, y and z are coordinates of one CRS (LAS): `given` > 0
 // wins; then the vertical part of its compound CRS (the user's --s_srs or the file's WKT); then
 // `stated` > 0 (what the file says apart from its CRS: PointCloud::z_unit_metres); then its CRS's own

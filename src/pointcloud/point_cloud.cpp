@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "skyview/error.h"
+#include "skyview/lowercase.h"
 
 namespace skyview {
 
@@ -37,12 +38,6 @@ class LasCloud final : public PointCloud {
   LasReader reader_;
 };
 
-std::string lower_extension(const std::string& path) {
-  std::string e = std::filesystem::path(path).extension().string();
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return e;
-}
-
 }  // namespace
 
 std::unique_ptr<PointCloud> detail::open_las_cloud(const std::string& path) { return std::make_unique<LasCloud>(path); }
@@ -52,7 +47,7 @@ std::unique_ptr<PointCloud> open_point_cloud(const std::string& path) {
   if (!in) throw Error("cannot open '" + path + "': no such file or not readable");
   char magic[4] = {};
   in.read(magic, 4);
-  const std::string ext = lower_extension(path);
+  const std::string ext = lowercase_extension(path);
   if (std::memcmp(magic, "LASF", 4) == 0 || ext == ".las" || ext == ".laz") return detail::open_las_cloud(path);
   if (ext == ".ply" || ext == ".pcd") return detail::open_pcl_cloud(path, ext == ".ply");
   if (ext == ".xyz" || ext == ".txt" || ext == ".csv" || ext == ".pts") return detail::open_text_cloud(path);
