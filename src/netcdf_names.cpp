@@ -2,7 +2,8 @@
 // them long_name "GDAL Band Number N" and refuses to set another (SetMetadataItem fails). Readers
 // of netCDF (xarray, CDO, ncview, Panoply) go by variable names, so a file of five products would
 // come out as five anonymous bands. The finished file is renamed in place with libnetcdf (the
-// library GDAL's driver itself uses) before it is moved to its final name.
+// library GDAL's driver itself uses) before it is moved to its final name; the global `history`
+// GDAL writes names the temporary file it created, so that name becomes the final one.
 #include "netcdf_names.h"
 
 #include <netcdf.h>
@@ -34,7 +35,8 @@ std::string netcdf_variable_name(const std::string& description) {
 
 }  // namespace
 
-void name_netcdf_variables(const std::string& path, const std::vector<std::string>& names) {
+void name_netcdf_variables(const std::string& path, const std::string& final_path,
+                           const std::vector<std::string>& names) {
   int nc = 0;
   check(nc_open(path.c_str(), NC_WRITE, &nc), path, "open");
   struct Closer {  // closes the file if a step below throws
@@ -53,6 +55,16 @@ void name_netcdf_variables(const std::string& path, const std::vector<std::strin
     int other = 0;
     if (nc_inq_varid(nc, name.c_str(), &other) == NC_NOERR) continue;  // taken: keep GDAL's name
     check(nc_rename_var(nc, var, name.c_str()), path, "rename");
+  }
+  std::size_t length = 0;
+  if (nc_inq_attlen(nc, NC_GLOBAL, "history", &length) == NC_NOERR && length > 0) {
+    std::string history(length, '\0');
+    if (nc_get_att_text(nc, NC_GLOBAL, "history", history.data()) == NC_NOERR) {
+      for (std::size_t at = history.find(path); at != std::string::npos;
+           at = history.find(path, at + final_path.size()))
+        history.replace(at, path.size(), final_path);
+      check(nc_put_att_text(nc, NC_GLOBAL, "history", history.size(), history.c_str()), path, "history");
+    }
   }
   check(nc_enddef(nc), path, "data mode");
   closer.id = -1;

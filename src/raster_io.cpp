@@ -673,7 +673,7 @@ void BandWriter::finish() {
   std::string why = close_written(s.ds.release());
   if (why.empty() && netcdf) {
     try {
-      detail::name_netcdf_variables(s.tmp, names);
+      detail::name_netcdf_variables(s.tmp, s.path, names);
     } catch (const Error& e) {
       why = e.what();
     }

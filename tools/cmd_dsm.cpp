@@ -158,9 +158,9 @@ Runner setup(CLI::App& app) {
     }
     if (rep.footprints_skipped > 0) {
       std::fprintf(stderr,
-                   "Warning: %d footprints were skipped (a height above the terrain where there is none, off the DEM; "
+                   "Warning: %d %s skipped (a height above the terrain where there is none, off the DEM; "
                    "no height and no returns; invalid, or covering no cell centre)\n",
-                   rep.footprints_skipped);
+                   rep.footprints_skipped, rep.footprints_skipped == 1 ? "footprint was" : "footprints were");
     }
     return 0;
   };

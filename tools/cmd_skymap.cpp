@@ -70,11 +70,11 @@ int run(const SkymapOptions& o) {
           ? ""
           : (o.preview.empty() ? std::filesystem::path(o.output).replace_extension(".png").string() : o.preview);
   if (!preview.empty() && preview == o.output) throw Error("the preview would overwrite OUT; give --preview");
+  const auto sky = make_sky(o);  // its options' errors before the outputs'
   check_outputs_apart({o.output, preview}, {o.epw});
   check_output_writable(o.output, o.out.overwrite);
   check_output_format(o.output, o.out.format, 2, o.out.creation_options);
   if (!preview.empty()) check_output_writable(preview, o.out.overwrite);
-  const auto sky = make_sky(o);
 
   std::optional<EpwFile> weather;
   if (!o.epw.empty()) weather = read_epw(o.epw);

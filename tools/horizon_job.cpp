@@ -213,15 +213,6 @@ void use_choice(HorizonJob& job, const AccuracyChoice& choice, double max_error)
 
 HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& command,
                                const std::vector<std::string>& more_outputs) {
-  std::vector<std::string> outputs{o.output};
-  outputs.insert(outputs.end(), more_outputs.begin(), more_outputs.end());
-  check_outputs_apart(outputs, {o.input});
-  check_output_writable(o.output, o.out.overwrite);
-  for (const std::string& path : more_outputs) {
-    if (!path.empty()) check_output_writable(path, o.out.overwrite);
-  }
-  // Before the input is read; svf checks its bands again.
-  check_output_format(o.output, o.out.format, 1, o.out.creation_options);
   HorizonJob job;
   job.edge = o.edge == "nodata" ? EdgeMode::nodata : EdgeMode::open;
   std::string method = o.method;
@@ -238,6 +229,16 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   job.choice = choice;
   job.engine = make_horizon_engine(method, params);
   check_edge_mode(job);
+  // The options first (a user fixing one error should not meet another, older one next), then the
+  // outputs, all before the input is read; svf checks its bands' format again.
+  std::vector<std::string> outputs{o.output};
+  outputs.insert(outputs.end(), more_outputs.begin(), more_outputs.end());
+  check_outputs_apart(outputs, {o.input});
+  check_output_writable(o.output, o.out.overwrite);
+  for (const std::string& path : more_outputs) {
+    if (!path.empty()) check_output_writable(path, o.out.overwrite);
+  }
+  check_output_format(o.output, o.out.format, 1, o.out.creation_options);
   job.quiet = o.out.quiet;
   ReadOptions ro;
   ro.band = o.band;

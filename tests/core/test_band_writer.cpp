@@ -116,6 +116,15 @@ TEST_F(BandWriterTest, NetcdfVariablesAreNamedAfterTheBands) {
     out.finish();
   }
   EXPECT_EQ(files_in(scratch.dir), 1u) << "no temporary file left";
+  {
+    // GDAL's history names the file it created: the final name, not the temporary one.
+    GDALDatasetUniquePtr ds(GDALDataset::Open(nc.c_str(), GDAL_OF_RASTER));
+    ASSERT_TRUE(ds);
+    const char* history = ds->GetMetadataItem("NC_GLOBAL#history");
+    ASSERT_NE(history, nullptr);
+    EXPECT_NE(std::string(history).find("Create( " + nc + ","), std::string::npos) << history;
+    EXPECT_EQ(std::string(history).find("skyview-tmp"), std::string::npos) << history;
+  }
   for (const auto& [b, variable] :
        {std::pair{0, "svf"}, {1, "horizon_azimuth_11.25"}, {2, "Band3"}, {3, "_3d_nodes_m"}}) {
     const std::string sub = "NETCDF:\"" + nc + "\":" + variable;

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <utility>
 
 #include <gdal_priv.h>
@@ -58,6 +59,17 @@ TEST_F(CliErrors, HorizonOutputsCountTheirEdgeCells) {
   ASSERT_TRUE(ds);
   // 21 x 21 cells of 1 m: those within 5 m of a side leave, the 11 x 11 around the centre do not.
   EXPECT_STREQ(ds->GetMetadataItem("EDGE_CELLS"), std::to_string(21 * 21 - 11 * 11).c_str());
+}
+
+// A bad option is said before an existing output: the user fixing the output would meet it next.
+TEST_F(CliErrors, OptionErrorsComeBeforeAnExistingOutput) {
+  std::ofstream(dir + "/there.tif") << "kept";
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/there.tif --samples 99999", dir), "--samples");
+  expect_one_line_error(run_skyview("horizon " + good + " " + dir + "/there.tif --far-lines 2 --method march", dir),
+                        "--far-lines applies only");
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/there.tif", dir), "exists; use --overwrite");
+  std::ifstream kept(dir + "/there.tif");
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(kept), {}), "kept");
 }
 
 TEST_F(CliErrors, MissingFile) {
