@@ -58,6 +58,18 @@ std::string four_digits(double v) {
   return text;
 }
 
+// The fewest cells whose p99 bounds the raster's with 95% confidence (299: 0.99^n must fall
+// under 0.05); fewer cells give a p99 but no bound.
+int cells_for_a_bound() {
+  int n = 1;
+  while (quantile_upper_rank(n, 0.99, 0.95) == 0) ++n;
+  return n;
+}
+
+std::string bound_text(double bound) {
+  return std::isnan(bound) ? "none under " + std::to_string(cells_for_a_bound()) + " cells" : four_digits(bound);
+}
+
 SvfCheckOptions check_options(const HorizonJob& job, int cells) {
   SvfCheckOptions c;
   c.cells = cells;
@@ -132,6 +144,12 @@ Runner setup(CLI::App& app) {
     ProductSet keep = ProductSet::none();
     for (const ProductBand* c : chosen) keep.add(c->product);
     const int n_check = *check_cells >= 0 ? *check_cells : (o->max_error >= 0.0 ? kDefaultCheckCells : 0);
+    // --max-error is met by a 95% bound of the p99, which fewer cells cannot give (a raster with
+    // fewer valid cells is checked whole, and needs none).
+    if (o->max_error >= 0.0 && n_check > 0 && n_check < cells_for_a_bound()) {
+      throw Error("--check-cells " + std::to_string(n_check) + " cannot show that --max-error is met: a 95% bound of " +
+                  "the p99 needs " + std::to_string(cells_for_a_bound()) + " cells or more (or 0: no check)");
+    }
     if (!preview->empty() || n_check > 0) keep.add(Product::svf);
     HorizonJobOptions opts = *o;
     opts.params.lower = keep.has(Product::openness_negative);
@@ -166,9 +184,9 @@ Runner setup(CLI::App& app) {
                      "svf check on %lld cells (%.1f s): p99 %s (95%% bound %s), max %s, bias %+.4f against exact "
                      "horizons in %d sectors; p99 %s (95%% bound %s) against %d sectors, near the continuous svf\n",
                      static_cast<long long>(r.error.cells), check->seconds(), four_digits(r.error.p99).c_str(),
-                     four_digits(r.p99_upper95).c_str(), four_digits(r.error.max_abs).c_str(), r.error.bias,
+                     bound_text(r.p99_upper95).c_str(), four_digits(r.error.max_abs).c_str(), r.error.bias,
                      check->directions(), four_digits(r.error_fine.p99).c_str(),
-                     four_digits(r.fine_p99_upper95).c_str(), check->fine_directions());
+                     bound_text(r.fine_p99_upper95).c_str(), check->fine_directions());
       }
       if (!job.choice) break;
       // The request is met when the raster's p99 against the near-continuous svf (the finer

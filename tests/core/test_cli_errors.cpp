@@ -72,6 +72,21 @@ TEST_F(CliErrors, OptionErrorsComeBeforeAnExistingOutput) {
   EXPECT_EQ(std::string(std::istreambuf_iterator<char>(kept), {}), "kept");
 }
 
+// --max-error is met by a 95% bound of the p99, which a handful of cells cannot give: one cell
+// used to be reported as "met with 95% confidence".
+TEST_F(CliErrors, MaxErrorNeedsEnoughCheckedCellsForItsBound) {
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/m.tif --max-error 0.05 --check-cells 10", dir),
+                        "needs 299 cells or more");
+  // Without --max-error ten cells still measure, and record no bound.
+  const RunResult few = run_skyview("svf " + good + " " + dir + "/c.tif --check-cells 10", dir);
+  ASSERT_EQ(few.exit_code, 0) << few.err;
+  init_gdal();
+  GDALDatasetUniquePtr ds(GDALDataset::Open((dir + "/c.tif").c_str(), GDAL_OF_RASTER));
+  ASSERT_TRUE(ds);
+  EXPECT_STREQ(ds->GetMetadataItem("SVF_CHECK_CELLS"), "10");
+  EXPECT_EQ(ds->GetMetadataItem("SVF_CHECK_P99_UPPER95"), nullptr);
+}
+
 TEST_F(CliErrors, MissingFile) {
   expect_one_line_error(run_skyview("svf " + dir + "/nope.tif " + dir + "/o.tif", dir), "no such file");
 }
