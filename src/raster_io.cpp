@@ -74,6 +74,11 @@ struct RawBand {
   std::vector<double> values;
   int has_nodata = 0;
   double nodata = 0;
+  // The band's mask where it is not just the nodata value (an alpha band, a .msk file, a GeoTIFF's
+  // internal mask): 0 marks a cell without data, whatever its value. Empty when every cell is valid
+  // or the nodata value alone says which are not.
+  std::vector<std::uint8_t> mask;
+  bool masked(std::size_t i) const { return !mask.empty() && mask[i] == 0; }
 };
 
 // The threads the run may use (--threads), as GDAL's options want them: GDAL decodes and compresses
@@ -128,6 +133,16 @@ RawBand read_raw_band(const std::string& path, int band_index) {
                 "': " + last_gdal_error("GDAL gives no reason; the file may be truncated or corrupt"));
   }
   r.nodata = band->GetNoDataValue(&r.has_nodata);
+  // GDAL's mask says which cells hold data; a fill value under an alpha of 0 must not become a
+  // height that occludes its neighbours.
+  if ((band->GetMaskFlags() & (GMF_ALL_VALID | GMF_NODATA)) == 0) {
+    r.mask.resize(r.values.size());
+    if (band->GetMaskBand()->RasterIO(GF_Read, 0, 0, r.width, r.height, r.mask.data(), r.width, r.height, GDT_Byte, 0,
+                                      0) != CE_None) {
+      throw Error("cannot read the mask of band " + std::to_string(band_index) + " of '" + path +
+                  "': " + last_gdal_error("GDAL gives no reason; the file may be truncated or corrupt"));
+    }
+  }
   // Packed rasters (Int16 with a scale of 0.01, say) hold value = raw * scale + offset: unpack them,
   // nodata first (it is a raw value), so that a scaled value can never pass for nodata.
   int has_scale = 0, has_offset = 0;
@@ -166,8 +181,9 @@ RasterBand read_band(const std::string& path, int band_index) {
   out.values = Grid<float>(raw.width, raw.height);
   for (std::size_t i = 0; i < raw.values.size(); ++i) {
     const double v = raw.values[i];
-    out.values.values()[i] =
-        raw.has_nodata && v == raw.nodata ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(v);
+    out.values.values()[i] = raw.masked(i) || (raw.has_nodata && v == raw.nodata)
+                                 ? std::numeric_limits<float>::quiet_NaN()
+                                 : static_cast<float>(v);
   }
   out.georef = georeference_of(*raw.ds);
   const char* description = raw.ds->GetRasterBand(band_index)->GetDescription();
@@ -198,6 +214,12 @@ Terrain read_terrain(const std::string& path, const ReadOptions& options, ReadRe
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (std::size_t i = 0; i < values.size(); ++i) {
     double& v = values[i];
+    if (raw.masked(i)) {
+      v = std::numeric_limits<double>::quiet_NaN();
+      ++rep.nodata_cells;
+      ++rep.masked_cells;
+      continue;
+    }
     if (std::isnan(v)) {
       if (!nodata_is_nan) {
         if (!options.nan_is_nodata) {

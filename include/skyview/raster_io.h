@@ -26,18 +26,20 @@ struct ReadOptions {
 struct ReadReport {
   std::int64_t nodata_cells = 0;
   std::int64_t undeclared_nan_cells = 0;  // NaN where the band declares another nodata value
+  std::int64_t masked_cells = 0;          // of nodata_cells, those the band's GDAL mask (alpha, .msk) marks
   bool has_nodata_value = false;
   double nodata_value = 0.0;
   double z_scale = 1.0;     // the metres per height unit applied
   std::string height_unit;  // what gave it (HeightUnit::source)
 };
 
-// Loads one band as a Terrain. Throws skyview::Error (one line, naming the file) for a
-// missing/unreadable file, a band out of range, a raster smaller than 2x2, an all-nodata
-// band, infinite values, or a CRS that cannot give ground distances.
+// Loads one band as a Terrain. Cells are nodata where they hold the band's nodata value or NaN,
+// or where the band's GDAL mask (an alpha band, a mask band or file) is 0. Throws skyview::Error (one line, naming the
+// file) for a missing/unreadable file, a band out of range, a raster smaller than 2x2, an all-nodata band, infinite
+// values, or a CRS that cannot give ground distances.
 Terrain read_terrain(const std::string& path, const ReadOptions& options, ReadReport* report = nullptr);
 
-// One band of any raster as floats (NaN where nodata), for comparing results: values as stored,
+// One band of any raster as floats (NaN where nodata or masked), for comparing results: values as stored,
 // no checks beyond the file opening and the band existing.
 struct RasterBand {
   Grid<float> values;

@@ -1,5 +1,6 @@
 // The hard cases: thin walls, spikes, degenerate shapes, nodata, extreme heights and cell
 // sizes, high latitudes, the antimeridian, and directions exactly along the grid.
+#include <gdal_priv.h>
 #include <GeographicLib/Geodesic.hpp>
 
 #include "test_support.h"
@@ -101,6 +102,50 @@ TEST(HardCases, NodataHolesAndBordersStayNodataAndNeverOcclude) {
     for (int c = 30; c < 45; ++c) t.heights(c, r) = NAN;  // hole
   }
   for (const char* m : {"march", "sweep", "sweep2", "raycast", "sampled"}) expect_sane(t, horizons(t, m, 16, true), m);
+}
+
+// A fill value under GDAL's mask (a GeoTIFF's internal mask, or an alpha band, which GDAL takes for
+// a mask in Byte rasters) is no height: read as nodata, it never occludes the flat ground around
+// it. Until Dec 5 the mask was ignored and the fill stood as a tower.
+TEST(HardCases, CellsUnderTheBandsMaskAreNodata) {
+  init_gdal();
+  const std::string dir = temp_dir("mask");
+  for (const bool alpha : {false, true}) {
+    const std::string path = dir + (alpha ? "/alpha.tif" : "/mask.tif");
+    {
+      GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName("GTiff");
+      GDALDatasetUniquePtr ds(
+          gtiff->Create(path.c_str(), 15, 15, alpha ? 2 : 1, alpha ? GDT_Byte : GDT_Float32, nullptr));
+      double gt[6] = {500000, 1, 0, 5000015, 0, -1};
+      ds->SetGeoTransform(gt);
+      ds->SetProjection(wkt_of("EPSG:32633").c_str());
+      std::vector<float> z(225, 100.0f), valid(225, 255.0f);
+      for (int r = 5; r < 10; ++r) {
+        for (int c = 5; c < 10; ++c) z[r * 15 + c] = 250.0f, valid[r * 15 + c] = 0.0f;
+      }
+      ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 15, 15, z.data(), 15, 15, GDT_Float32, 0, 0), CE_None);
+      GDALRasterBand* m = nullptr;
+      if (alpha) {
+        m = ds->GetRasterBand(2);
+        m->SetColorInterpretation(GCI_AlphaBand);
+      } else {
+        ASSERT_EQ(ds->CreateMaskBand(GMF_PER_DATASET), CE_None);
+        m = ds->GetRasterBand(1)->GetMaskBand();
+      }
+      ASSERT_EQ(m->RasterIO(GF_Write, 0, 0, 15, 15, valid.data(), 15, 15, GDT_Float32, 0, 0), CE_None);
+    }
+    ReadReport report;
+    const Terrain t = read_terrain(path, {}, &report);
+    EXPECT_EQ(report.masked_cells, 25) << path;
+    EXPECT_EQ(report.nodata_cells, 25) << path;
+    EXPECT_FALSE(t.valid(7, 7)) << path;
+    EXPECT_TRUE(t.valid(4, 7)) << path;
+    const HorizonField f = horizons(t, "sweep", 16);
+    for (int k = 0; k < 16; ++k) EXPECT_EQ(f.upper_at(f.cell(4, 7), k), 0.0f) << path << " direction " << k;
+    const RasterBand band = read_band(path, 1);
+    EXPECT_TRUE(std::isnan(band.values(7, 7))) << path;
+    EXPECT_EQ(band.values(4, 7), 100.0f) << path;
+  }
 }
 
 // A city framed by nodata on two sides (a collar, as clipped tiles have), then also holed in the
