@@ -1,6 +1,7 @@
 // skyview compare: how far one raster band is from a reference on the same grid (another tool's
 // svf against skyview's ray-cast reference, a run against an earlier one), in the statistics
 // `skyview bench` reports.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -77,7 +78,8 @@ Runner setup(CLI::App& app) {
                  "metres if the CRS is in metres or degrees")
       ->check(positive_number());
   app.add_option("--max-slope", o->max_slope,
-                 "Compare only cells whose ground slope on --dem is at most this (degrees)")
+                 "Compare only cells whose ground slope on --dem is at most this (degrees); cells without a height in "
+                 "--dem are left out too")
       ->check(number_in(0.0, 90.0));
   app.add_option("--json", o->json,
                  "Also write the statistics as JSON to this file ('-': standard output, the summary then on stderr)");
@@ -100,6 +102,17 @@ Runner setup(CLI::App& app) {
     RasterBand value = read_band(o->value, o->band);
     const RasterBand reference = read_band(o->reference, ref_band);
     check_same_grid({o->value, value.values, value.georef}, {o->reference, reference.values, reference.georef});
+    // An infinite value would make every statistic inf or NaN: refused, as svf refuses one in heights.
+    auto refuse_infinite = [](const std::string& path, int band, const Grid<float>& grid) {
+      const auto& v = grid.values();
+      const auto inf = std::find_if(v.begin(), v.end(), [](float x) { return std::isinf(x); });
+      if (inf == v.end()) return;
+      const auto i = inf - v.begin(), w = static_cast<std::ptrdiff_t>(grid.width());
+      throw Error("band " + std::to_string(band) + " of '" + path + "' holds an infinite value at cell (" +
+                  std::to_string(i % w) + ", " + std::to_string(i / w) + "); set it to the nodata value");
+    };
+    refuse_infinite(o->value, o->band, value.values);
+    refuse_infinite(o->reference, ref_band, reference.values);
     // Openness in degrees against an svf, say: the statistics would be of nothing. Said even under -q
     // (it goes to stderr); --scale and --offset are how a deliberate conversion is given.
     if (!value.unit.empty() && !reference.unit.empty() && value.unit != reference.unit && o->scale == 1.0 &&
@@ -109,7 +122,7 @@ Runner setup(CLI::App& app) {
                    value.unit.c_str(), reference.unit.c_str());
     }
     for (float& v : value.values.values()) v = static_cast<float>(v * o->scale + o->offset);
-    std::int64_t steep = 0;
+    std::int64_t steep = 0, no_dem = 0;
     if (o->max_slope >= 0.0) {
       ReadOptions ro;
       ro.z_scale = o->z_scale;
@@ -118,19 +131,24 @@ Runner setup(CLI::App& app) {
       const double limit = o->max_slope * M_PI / 180.0;
       for (int row = 0; row < dem.height(); ++row) {
         for (int col = 0; col < dem.width(); ++col) {
-          double slope = 0, aspect = 0;
-          horn_slope_aspect(dem, col, row, slope, aspect);
           float& v = value.values(col, row);
           // Counted only where both have a value: the others were never compared.
-          if (slope > limit && !std::isnan(v) && !std::isnan(reference.values(col, row)))
-            v = std::numeric_limits<float>::quiet_NaN(), ++steep;
+          if (std::isnan(v) || std::isnan(reference.values(col, row))) continue;
+          if (!dem.valid(col, row)) {  // no height, no slope: not known to be flat enough
+            v = std::numeric_limits<float>::quiet_NaN(), ++no_dem;
+            continue;
+          }
+          double slope = 0, aspect = 0;
+          horn_slope_aspect(dem, col, row, slope, aspect);
+          if (slope > limit) v = std::numeric_limits<float>::quiet_NaN(), ++steep;
         }
       }
     }
     const ErrorStats e = compare_to_reference(value.values, reference.values, o->threshold);
-    if (e.cells == 0 && steep > 0) {
+    if (e.cells == 0 && steep + no_dem > 0) {
       throw Error("every cell valid in both is steeper than --max-slope " + CLI::detail::to_string(o->max_slope) +
-                  " degrees (" + std::to_string(steep) + " left out)");
+                  " degrees or has no height in --dem (" + std::to_string(steep) + " and " + std::to_string(no_dem) +
+                  " left out)");
     }
     if (e.cells == 0) throw Error("no cell is valid in both '" + o->value + "' and '" + o->reference + "'");
     if (!o->quiet) {
@@ -140,6 +158,7 @@ Runner setup(CLI::App& app) {
       if (o->max_slope >= 0.0) {
         what += "; " + std::to_string(steep) + " cells steeper than " + CLI::detail::to_string(o->max_slope) +
                 " degrees left out";
+        if (no_dem > 0) what += ", and " + std::to_string(no_dem) + " without a height in " + o->dem;
       }
       // With the JSON on standard output the summary goes to stderr, so that the JSON parses.
       std::FILE* summary = o->json == "-" ? stderr : stdout;
@@ -153,6 +172,7 @@ Runner setup(CLI::App& app) {
           {"reference", {{"path", o->reference}, {"band", ref_band}, {"description", reference.description}}},
           {"max_slope_degrees", o->max_slope >= 0.0 ? nlohmann::json(o->max_slope) : nlohmann::json()},
           {"left_out_steep", steep},
+          {"left_out_no_dem_height", no_dem},
           {"cells", e.cells},
           {"rmse", e.rmse},
           {"bias", e.bias},

@@ -208,7 +208,33 @@ TEST_F(CompareCli, MaxSlopeCountsOnlyCellsValidInBoth) {
   EXPECT_NE(r.err.find("no cell is valid in both"), std::string::npos) << r.err;
 }
 
-// The JSON report is an output like any other: an existing one is kept unless --overwrite.
+// A cell without a height in --dem has no slope: it is not known to be flat enough, so it is left
+// out and counted apart (until Dec 5 it was kept).
+TEST_F(CompareCli, MaxSlopeLeavesOutCellsWithoutADemHeight) {
+  Grid<float> dem(12, 10, 0.0f);
+  dem(2, 2) = dem(2, 3) = kNaN;
+  write_dem(dir + "/dem.tif", dem);
+  const nlohmann::json flat =
+      stats(dir + "/value.tif " + dir + "/reference.tif --dem " + dir + "/dem.tif --max-slope 5");
+  EXPECT_EQ(flat["left_out_no_dem_height"], 2);
+  EXPECT_EQ(flat["left_out_steep"], 0);
+  EXPECT_EQ(flat["cells"], 98);
+}
+
+// An infinite value would turn every statistic into inf or NaN: refused with the cell, as svf
+// refuses an infinite height (until Dec 5 the run printed "rmse -nan" and exited 0).
+TEST_F(CompareCli, InfiniteValuesAreRefused) {
+  Grid<float> v = k.value;
+  v(3, 4) = std::numeric_limits<float>::infinity();
+  write(dir + "/inf.tif", v);
+  for (const std::string& args :
+       {dir + "/inf.tif " + dir + "/reference.tif", dir + "/reference.tif " + dir + "/inf.tif"}) {
+    const RunResult r = run(args);
+    EXPECT_EQ(r.exit_code, 1) << args;
+    EXPECT_NE(r.err.find("holds an infinite value at cell (3, 4)"), std::string::npos) << r.err;
+  }
+}
+
 // Bands in different units compare nothing: said, unless --scale or --offset converts them.
 TEST_F(CompareCli, BandsInDifferentUnitsAreSaid) {
   write_bands(dir + "/degrees.tif", k.value.width(), k.value.height(), georef,
@@ -223,6 +249,7 @@ TEST_F(CompareCli, BandsInDifferentUnitsAreSaid) {
   EXPECT_EQ(same.err.find("units differ"), std::string::npos) << same.err;
 }
 
+// The JSON report is an output like any other: an existing one is kept unless --overwrite.
 TEST_F(CompareCli, KeepsAnExistingJsonUnlessOverwrite) {
   const std::string json = dir + "/kept.json";
   std::ofstream(json) << "earlier";
