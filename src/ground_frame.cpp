@@ -54,7 +54,7 @@ Jacobian affine_jacobian(const GeoReference& g, double unit) {
 GroundFrame::GroundFrame(const GeoReference& georef, int width, int height, int lattice_step) : step_(lattice_step) {
   if (!georef.has_geotransform) {
     lattice_ = {affine_jacobian(georef, 1.0)};
-    description_ = "no georeferencing: 1 m square cells assumed";
+    description_ = "no georeferencing: 1 m square cells assumed, the first row to the north";
     return;
   }
   if (georef.crs_wkt.empty()) {

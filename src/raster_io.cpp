@@ -162,7 +162,9 @@ GeoReference georeference_of(GDALDataset& ds) {
   GeoReference g;
   double gt[6];
   g.has_geotransform = ds.GetGeoTransform(gt) == CE_None;
-  std::copy(gt, gt + 6, g.geotransform.begin());
+  // Without one GDAL gives (0, 1, 0, 0, 0, 1), whose rows run north; an image's first row is its
+  // top, as QGIS shows it, so the default stays north-up.
+  if (g.has_geotransform) std::copy(gt, gt + 6, g.geotransform.begin());
   if (const OGRSpatialReference* srs = ds.GetSpatialRef()) {
     char* wkt = nullptr;
     const char* opts[] = {"FORMAT=WKT2_2018", nullptr};

@@ -148,6 +148,26 @@ TEST(HardCases, CellsUnderTheBandsMaskAreNodata) {
   }
 }
 
+// A raster with no geotransform is an image: its first row is its top, north, as QGIS shows it.
+// Until Dec 5 GDAL's stand-in geotransform (rows running north) put a wall above a cell in the
+// image into its southern horizon band.
+TEST(HardCases, ARasterWithoutAGeotransformIsNorthUp) {
+  init_gdal();
+  const std::string path = temp_dir("nogt") + "/wall.tif";
+  {
+    GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName("GTiff");
+    GDALDatasetUniquePtr ds(gtiff->Create(path.c_str(), 41, 41, 1, GDT_Float32, nullptr));
+    std::vector<float> z(41 * 41, 0.0f);
+    for (int c = 0; c < 41; ++c) z[10 * 41 + c] = 50.0f;  // a wall along row 10, above (20, 20)
+    ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 41, 41, z.data(), 41, 41, GDT_Float32, 0, 0), CE_None);
+  }
+  const Terrain t = read_terrain(path, {});
+  ASSERT_FALSE(t.georef.has_geotransform);
+  const HorizonField f = horizons(t, "sweep", 4);  // north, east, south, west
+  EXPECT_NEAR(f.upper_at(f.cell(20, 20), 0), std::atan2(50.0, 10.0), 1e-5);
+  EXPECT_EQ(f.upper_at(f.cell(20, 20), 2), 0.0f);
+}
+
 // A city framed by nodata on two sides (a collar, as clipped tiles have), then also holed in the
 // middle. The ray cast's rays along the grid (and steep rays that fall into the hole and under its
 // skirt) can pass into the terrain through a hit lost in rounding; until Dec 3 the test of where
