@@ -440,6 +440,15 @@ std::string close_written(GDALDataset* ds) {
   return why;
 }
 
+// Removes a temporary output and its side files; a file the driver cannot open again (a failed
+// Create leaves a bare header) is unlinked.
+void remove_temporary(GDALDriver* driver, const std::string& tmp) {
+  if (!path_exists(tmp)) return;
+  driver->Delete(tmp.c_str());
+  if (path_exists(tmp)) VSIUnlink(tmp.c_str());
+  CPLErrorReset();
+}
+
 // The finished temporary file replaces `path` (an old dataset there goes with its side files, so
 // nothing stale survives).
 void move_into_place(GDALDriver* driver, const std::string& tmp, const std::string& path) {
@@ -450,8 +459,9 @@ void move_into_place(GDALDriver* driver, const std::string& tmp, const std::stri
     }
   }
   if (driver->Rename(path.c_str(), tmp.c_str()) != CE_None) {
-    driver->Delete(tmp.c_str());
-    throw Error("cannot move the finished output into place at '" + path + "': " + last_gdal_error());
+    const std::string why = last_gdal_error();
+    remove_temporary(driver, tmp);
+    throw Error("cannot move the finished output into place at '" + path + "': " + why);
   }
 }
 
@@ -466,7 +476,7 @@ void commit_dataset(GDALDataset* mem, const std::string& path, const std::string
   GDALDataset* out = driver->CreateCopy(tmp.c_str(), mem, FALSE, opts.List(), nullptr, nullptr);
   const std::string why = out ? close_written(out) : last_gdal_error();
   if (!why.empty() || !out) {
-    if (path_exists(tmp)) driver->Delete(tmp.c_str());
+    remove_temporary(driver, tmp);
     throw Error("cannot write '" + path + "': " + naming_output(why, tmp, path));
   }
   move_into_place(driver, tmp, path);
@@ -628,7 +638,7 @@ BandWriter::BandWriter(const std::string& path, int width, int height, int bands
     s.ds.reset(s.driver->Create(s.tmp.c_str(), width, height, bands, GDT_Float32, opts.List()));
     if (!s.ds) {
       const std::string why = naming_output(last_gdal_error(), s.tmp, path);
-      if (path_exists(s.tmp)) s.driver->Delete(s.tmp.c_str());
+      remove_temporary(s.driver, s.tmp);
       throw Error("cannot write '" + path + "': " + why);
     }
   } else {
@@ -642,7 +652,7 @@ BandWriter::~BandWriter() {
   if (!s_->ds) return;  // finished
   const bool on_disk = s_->direct;
   s_->ds.reset();
-  if (on_disk && path_exists(s_->tmp)) s_->driver->Delete(s_->tmp.c_str());
+  if (on_disk) remove_temporary(s_->driver, s_->tmp);
 }
 
 void BandWriter::write(int index, const OutputBand& band) {
@@ -703,7 +713,7 @@ void BandWriter::finish() {
     }
   }
   if (!why.empty()) {
-    if (path_exists(s.tmp)) s.driver->Delete(s.tmp.c_str());
+    remove_temporary(s.driver, s.tmp);
     throw Error("cannot write '" + s.path + "': " + naming_output(why, s.tmp, s.path));
   }
   move_into_place(s.driver, s.tmp, s.path);

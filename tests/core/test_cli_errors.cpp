@@ -44,6 +44,17 @@ TEST_F(CliErrors, GdalStyleOptionsBeforeTheFilesAndOutputsNamedForTheirFormat) {
   EXPECT_FALSE(std::filesystem::exists(dir + "/svf.png"));
 }
 
+// A creation option the driver refuses leaves nothing behind: GDAL's failed Create wrote a bare
+// TIFF header under the temporary name, which its own Delete could not open, so until Dec 5 it stayed.
+TEST_F(CliErrors, AFailedCreateLeavesNoTemporaryFile) {
+  for (const char* command : {"svf", "horizon"}) {
+    expect_one_line_error(run_skyview(std::string(command) + " " + good + " " + dir + "/b.tif -co BLOCKXSIZE=7", dir),
+                          "TileWidth");
+    for (const auto& entry : std::filesystem::directory_iterator(dir))
+      EXPECT_EQ(entry.path().filename().string().find("skyview-tmp"), std::string::npos) << entry.path();
+  }
+}
+
 // A radius shorter than a cell reaches no grid line: every horizon would be open.
 TEST_F(CliErrors, ARadiusShorterThanACellIsRefused) {
   expect_one_line_error(run_skyview("svf " + good + " " + dir + "/r.tif --method march --radius 0.5", dir),
