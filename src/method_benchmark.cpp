@@ -112,7 +112,8 @@ BenchReference compute_reference(const Terrain& terrain, int directions, Azimuth
 
 std::vector<BenchResult> run_bench(const Terrain& terrain, const std::vector<BenchConfig>& configs,
                                    const BenchReference& reference, int repeats,
-                                   const std::function<void(const BenchResult&)>& on_result) {
+                                   const std::function<void(const BenchResult&)>& on_result,
+                                   std::vector<BenchSkipped>* skipped) {
   // Rounds over every configuration, not each configuration's runs in a row: the shared machine's
   // speed drifts by up to 2x within one bench (on Dec 3 the two-line sweeps, run first, timed 1.8x
   // slower on city.tif than in a run minutes before, while the one-line rows after them matched),
@@ -126,12 +127,21 @@ std::vector<BenchResult> run_bench(const Terrain& terrain, const std::vector<Ben
   for (const BenchConfig& config : configs) engines.push_back(make_horizon_engine(config.method, config.params));
   std::vector<BenchResult> results(configs.size());
   std::vector<std::vector<double>> times(configs.size());
+  std::vector<bool> runs(configs.size(), true);
   for (int round = 0; round < rounds; ++round) {
     for (std::size_t i = 0; i < configs.size(); ++i) {
+      if (!runs[i]) continue;
       HorizonField field;
       ProgressCounter progress;
       const auto t0 = std::chrono::steady_clock::now();
-      engines[i]->compute(terrain, Window::whole(terrain), field, progress);
+      try {
+        engines[i]->compute(terrain, Window::whole(terrain), field, progress);
+      } catch (const Error& e) {
+        if (!skipped || round > 0) throw;  // a refusal comes on the first run or never
+        skipped->push_back({configs[i].label(), e.what()});
+        runs[i] = false;
+        continue;
+      }
       const SkyViewProducts products =
           sky_view_products(terrain, Window::whole(terrain), field, engines[i]->radius(), EdgeMode::open);
       times[i].push_back(seconds_since(t0));
@@ -153,8 +163,12 @@ std::vector<BenchResult> run_bench(const Terrain& terrain, const std::vector<Ben
       }
     }
   }
-  mark_pareto_front(results);
-  return results;
+  std::vector<BenchResult> ran;
+  for (std::size_t i = 0; i < configs.size(); ++i) {
+    if (runs[i]) ran.push_back(std::move(results[i]));
+  }
+  mark_pareto_front(ran);
+  return ran;
 }
 
 void mark_pareto_front(std::vector<BenchResult>& results) {

@@ -84,6 +84,7 @@ Runner setup(CLI::App& app) {
     if (ec || !std::filesystem::is_directory(o->out))
       throw Error("--out '" + o->out + "' is not a folder that can be made");
     Terrain terrain;
+    ReadReport report;
     try {
       for (const auto& n : names) {
         check_outputs_apart({o->out + "/" + n}, {o->input});
@@ -92,11 +93,20 @@ Runner setup(CLI::App& app) {
       ReadOptions ro;
       ro.band = o->band;
       ro.z_scale = o->z_scale;
-      terrain = read_terrain(o->input, ro);
+      terrain = read_terrain(o->input, ro, &report);
     } catch (...) {
       for (const auto& folder : made) std::filesystem::remove(folder, ec);  // only while empty
       throw;
     }
+    // A run that fails before writing leaves none of the folders it made.
+    struct RemoveIfEmpty {
+      std::vector<std::filesystem::path>* folders;
+      ~RemoveIfEmpty() {
+        std::error_code e;
+        if (folders)
+          for (const auto& folder : *folders) std::filesystem::remove(folder, e);  // only while empty
+      }
+    } remove_if_failed{&made};
     if (!o->quiet) std::fprintf(stderr, "reference: raycast with %d directions...\n", o->reference_directions);
     const BenchReference ref = compute_reference(terrain, o->reference_directions, origin);
     if (!o->quiet) {
@@ -105,18 +115,35 @@ Runner setup(CLI::App& app) {
       std::fprintf(stderr, "%zu configurations in %d rounds; each is listed as the last round finishes it\n",
                    grid.size(), o->repeat);
     }
-    const auto results = run_bench(terrain, grid, ref, o->repeat, [&](const BenchResult& r) {
-      if (!o->quiet) {
-        std::fprintf(stderr, "%-28s %8.3f s  svf p99 %.4f  rmse %.4f  cont. p99 %.4f\n", r.config.label().c_str(),
-                     r.seconds, r.svf.p99, r.svf.rmse, r.svf_continuous.p99);
-      }
-    });
-    const std::string name = std::filesystem::path(o->input).filename().string();
-    write_output_file(o->out + "/bench.json", bench_to_json(o->input, ref, results).dump(2) + "\n", o->overwrite);
-    const std::string md = bench_to_markdown(name, ref, results);
+    std::vector<BenchSkipped> skipped;
+    const auto results = run_bench(
+        terrain, grid, ref, o->repeat,
+        [&](const BenchResult& r) {
+          if (!o->quiet) {
+            std::fprintf(stderr, "%-28s %8.3f s  svf p99 %.4f  rmse %.4f  cont. p99 %.4f\n", r.config.label().c_str(),
+                         r.seconds, r.svf.p99, r.svf.rmse, r.svf_continuous.p99);
+          }
+        },
+        &skipped);
+    // Even under -q: the tables lack these rows.
+    for (const BenchSkipped& s : skipped)
+      std::fprintf(stderr, "Warning: %s skipped: %s\n", s.label.c_str(), s.why.c_str());
+    if (results.empty()) throw Error("no configuration can run on '" + o->input + "': " + skipped.front().why);
+    std::string name = std::filesystem::path(o->input).filename().string();
+    if (o->band != 1) name += " band " + std::to_string(o->band);
+    nlohmann::json json = bench_to_json(o->input, ref, results);
+    json["band"] = o->band;
+    json["z_scale"] = report.z_scale;
+    json["height_unit"] = report.height_unit;
+    for (const BenchSkipped& s : skipped) json["skipped"].push_back({{"label", s.label}, {"why", s.why}});
+    write_output_file(o->out + "/bench.json", json.dump(2) + "\n", o->overwrite);
+    std::string md = bench_to_markdown(name, ref, results);
+    if (!skipped.empty()) md += "\nSkipped, as they cannot run on this raster:\n\n";
+    for (const BenchSkipped& s : skipped) md += "- " + s.label + ": " + s.why + "\n";
     write_output_file(o->out + "/bench.md", md, o->overwrite);
     plot_bench(o->out + "/bench.png", "skyview bench: " + name, results, o->overwrite);
     std::fputs(md.c_str(), stdout);
+    remove_if_failed.folders = nullptr;
     return 0;
   };
 }

@@ -64,11 +64,19 @@ BenchReference compute_reference(const Terrain& terrain, int directions, Azimuth
 constexpr int kBenchContinuousCells = 1000;
 constexpr int kBenchContinuousSectors = 1024;
 
+// A configuration that cannot run on the raster (a 500 m radius that puts every sample of the
+// sampled method beyond a raster 3 m across), and why.
+struct BenchSkipped {
+  std::string label, why;
+};
+
 // Runs every config `repeats` times, in rounds over all of them (median time); `on_result` is called
-// for each config as the last round finishes it.
+// for each config as the last round finishes it. A config whose engine refuses the raster is left
+// out of the results and, when `skipped` is given, listed there; otherwise its error is thrown.
 std::vector<BenchResult> run_bench(const Terrain& terrain, const std::vector<BenchConfig>& configs,
                                    const BenchReference& reference, int repeats,
-                                   const std::function<void(const BenchResult&)>& on_result = {});
+                                   const std::function<void(const BenchResult&)>& on_result = {},
+                                   std::vector<BenchSkipped>* skipped = nullptr);
 
 void mark_pareto_front(std::vector<BenchResult>& results);
 nlohmann::json bench_to_json(const std::string& raster, const BenchReference& ref, const std::vector<BenchResult>& r);

@@ -55,6 +55,23 @@ TEST_F(CliErrors, AFailedCreateLeavesNoTemporaryFile) {
   }
 }
 
+// On a raster 3 m across the sampled method's 500 m radius puts every sample beyond it for 8
+// samples: those configurations are skipped and said, the rest benched (until Dec 5 the first
+// refusal ended the whole bench and left its empty folder).
+TEST_F(CliErrors, BenchSkipsConfigurationsThatCannotRunOnTheRaster) {
+  ASSERT_EQ(run_skyview("synth pit " + dir + "/tiny.tif --size 20 --cell 0.1", dir).exit_code, 0);
+  const RunResult r = run_skyview("bench " + dir + "/tiny.tif --methods sampled --repeat 1 --out " + dir + "/b", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("Warning: sampled d=8 s=8 r=500 skipped: --radius 500 m puts every sample"), std::string::npos)
+      << r.err;
+  std::ifstream in(dir + "/b/bench.json");
+  const std::string json((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NE(json.find("\"skipped\""), std::string::npos);
+  EXPECT_NE(json.find("\"label\": \"sampled d=32 s=64 r=500\""), std::string::npos) << "the others ran";
+  EXPECT_NE(json.find("\"band\": 1"), std::string::npos);
+  EXPECT_NE(json.find("\"z_scale\": 1"), std::string::npos);
+}
+
 // A radius shorter than a cell reaches no grid line: every horizon would be open.
 TEST_F(CliErrors, ARadiusShorterThanACellIsRefused) {
   expect_one_line_error(run_skyview("svf " + good + " " + dir + "/r.tif --method march --radius 0.5", dir),
