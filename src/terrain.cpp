@@ -56,8 +56,9 @@ Terrain extend_at_raster_edges(const Terrain& t, const Window& w, Window& inner)
   // beyond: a copy of the boundary cell would stand above a slope falling off the raster and cast
   // a horizon on rays along the boundary. The slope is the gentler of the last two differences
   // into the boundary, or none where they disagree in sign or meet nodata (the minmod limiter of
-  // finite-volume schemes), and at most 45°. So a plane goes on as a plane, corners and cells
-  // beside nodata included, while a wall or spike at the edge is only copied, never raised. The
+  // finite-volume schemes), and at most 45°. So a plane goes on as a plane, corners included,
+  // while a wall or spike at the edge is only copied, never raised; a boundary cell with nodata
+  // one or two cells inward is copied too (one difference cannot tell a plane from a wall's foot). The
   // rule commutes with negating the terrain, as the lowest angles (its horizons) need.
   auto rise = [&](int col, int row, int dcol, int drow, double spacing) {
     const int c1 = col - dcol, r1 = row - drow, c2 = c1 - dcol, r2 = r1 - drow;
