@@ -704,7 +704,32 @@ void BandWriter::finish() {
   std::vector<std::string> names;
   for (int b = 1; netcdf && b <= s.ds->GetRasterCount(); ++b)
     names.emplace_back(s.ds->GetRasterBand(b)->GetDescription());
+  // ENVI's header describes the file by the name it was created under: the temporary one.
+  std::vector<std::string> headers;
+  if (EQUAL(s.driver->GetDescription(), "ENVI")) {
+    const CPLStringList files(s.ds->GetFileList());
+    for (int i = 0; i < files.size(); ++i) {
+      if (lowercase_extension(files[i]) == ".hdr") headers.emplace_back(files[i]);
+    }
+  }
   std::string why = close_written(s.ds.release());
+  for (const std::string& header : headers) {
+    std::ifstream in(header);
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    in.close();
+    // The path as given, or its name alone.
+    const std::string from = std::filesystem::path(s.tmp).filename().string();
+    const std::string to = std::filesystem::path(s.path).filename().string();
+    const std::size_t at = text.find(from);
+    if (at == std::string::npos) continue;
+    const std::size_t dir = s.tmp.size() - from.size();
+    if (at >= dir && text.compare(at - dir, dir, s.tmp, 0, dir) == 0) {
+      text.replace(at - dir, s.tmp.size(), s.path);
+    } else {
+      text.replace(at, from.size(), to);
+    }
+    std::ofstream(header, std::ios::trunc) << text;
+  }
   if (why.empty() && netcdf) {
     try {
       detail::name_netcdf_variables(s.tmp, s.path, names);

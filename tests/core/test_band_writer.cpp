@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include "skyview/error.h"
 #include "test_support.h"
@@ -136,6 +137,19 @@ TEST_F(BandWriterTest, NetcdfVariablesAreNamedAfterTheBands) {
     EXPECT_EQ(gt[0], 500000.0);
     expect_band(*ds, 0, band_values(b), wo.nodata);
   }
+}
+
+// ENVI's header describes the file by the name GDAL created it under: the final one, not the
+// temporary name it was written under (until Dec 5, ".out.skyview-tmp-PID.bin").
+TEST_F(BandWriterTest, EnviHeadersNameTheFinalFile) {
+  wo.format = "ENVI";
+  const std::string bin = scratch.dir + "/out.bin";
+  const std::vector<float> v = band_values(0);
+  write_bands(bin, kW, kH, georef(), {{"svf", "1", v.data(), {}}}, wo);
+  std::ifstream in(scratch.dir + "/out.hdr");
+  const std::string header((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NE(header.find("out.bin}"), std::string::npos) << header;
+  EXPECT_EQ(header.find("skyview-tmp"), std::string::npos) << header;
 }
 
 // A band written in parts of rows (what `skyview horizon` does by blocks) equals the band whole.
