@@ -22,6 +22,7 @@
 #include "skyview/error.h"
 #include "skyview/height_unit.h"
 #include "skyview/lowercase.h"
+#include "skyview/temporary_outputs.h"
 
 namespace skyview {
 
@@ -332,12 +333,8 @@ void check_outputs_apart(const std::vector<std::string>& outputs, const std::vec
 
 namespace {
 
-std::string temporary_name(const std::string& path) {
-  const std::filesystem::path p(path);
-  std::ostringstream name;
-  name << "." << p.stem().string() << ".skyview-tmp-" << ::getpid() << p.extension().string();
-  return (p.parent_path() / name.str()).string();
-}
+// Registered for removal should a signal stop the run (temporary_outputs.h).
+std::string temporary_name(const std::string& path) { return temporary_output_name(path); }
 
 }  // namespace
 
@@ -356,6 +353,7 @@ void write_output_file(const std::string& path, const std::string& bytes, bool o
   }
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
+  forget_temporary(tmp);
   if (ec) {
     std::filesystem::remove(tmp, ec);
     throw Error("cannot move the finished output into place at '" + path + "'");
@@ -443,6 +441,7 @@ std::string close_written(GDALDataset* ds) {
 // Removes a temporary output and its side files; a file the driver cannot open again (a failed
 // Create leaves a bare header) is unlinked.
 void remove_temporary(GDALDriver* driver, const std::string& tmp) {
+  forget_temporary(tmp);
   if (!path_exists(tmp)) return;
   driver->Delete(tmp.c_str());
   if (path_exists(tmp)) VSIUnlink(tmp.c_str());
@@ -458,7 +457,9 @@ void move_into_place(GDALDriver* driver, const std::string& tmp, const std::stri
       VSIUnlink(path.c_str());
     }
   }
-  if (driver->Rename(path.c_str(), tmp.c_str()) != CE_None) {
+  const bool moved = driver->Rename(path.c_str(), tmp.c_str()) == CE_None;
+  if (moved) forget_temporary(tmp);
+  if (!moved) {
     const std::string why = last_gdal_error();
     remove_temporary(driver, tmp);
     throw Error("cannot move the finished output into place at '" + path + "': " + why);

@@ -7,6 +7,7 @@
 #include "command.h"
 #include "skyview/error.h"
 #include "skyview/raster_io.h"
+#include "skyview/temporary_outputs.h"
 #include "skyview/version.h"
 
 namespace {
@@ -45,6 +46,7 @@ std::string one_line(const char* message) {
 int main(int argc, char** argv) {
   using namespace skyview;
   cli::set_command_line(argc, argv);
+  remove_temporary_outputs_on_signals();  // a run stopped by Ctrl-C or a scheduler leaves no hidden file
   CLI::App app{"skyview " + version() + ": horizon angles, sky-view factor and solar exposure from elevation rasters",
                "skyview"};
   app.set_version_flag("--version", "skyview " + version());

@@ -1,6 +1,9 @@
 // Bad input to the executable: one clear line on stderr and a non-zero exit, never a crash.
 #include <sys/wait.h>
+#include <unistd.h>
+
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -70,6 +73,36 @@ TEST_F(CliErrors, BenchSkipsConfigurationsThatCannotRunOnTheRaster) {
   EXPECT_NE(json.find("\"label\": \"sampled d=32 s=64 r=500\""), std::string::npos) << "the others ran";
   EXPECT_NE(json.find("\"band\": 1"), std::string::npos);
   EXPECT_NE(json.find("\"z_scale\": 1"), std::string::npos);
+}
+
+// A run stopped by a signal (Ctrl-C, a batch scheduler's SIGTERM at its time limit) removes the
+// hidden temporary file it was writing; until Dec 5 a killed `horizon` left it, megabytes of it.
+TEST_F(CliErrors, AStoppedRunLeavesNoTemporaryFile) {
+  ASSERT_EQ(run_skyview("synth city " + dir + "/big.tif --size 500", dir).exit_code, 0);
+  auto temporary_exists = [&] {
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+      if (entry.path().filename().string().find("skyview-tmp") != std::string::npos) return true;
+    }
+    return false;
+  };
+  const std::string in = dir + "/big.tif", out = dir + "/h.tif";
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    std::freopen("/dev/null", "w", stderr);
+    execl(SKYVIEW_EXE, SKYVIEW_EXE, "horizon", in.c_str(), out.c_str(), "--method", "march", "--radius", "200",
+          "--directions", "64", "-q", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  bool seen = false;
+  for (int i = 0; i < 600 && !(seen = temporary_exists()); ++i) usleep(50000);
+  kill(pid, SIGTERM);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(seen) << "the run made no temporary file to remove";
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << "the run ended before the signal: " << status;
+  EXPECT_FALSE(temporary_exists());
+  EXPECT_FALSE(std::filesystem::exists(out));
 }
 
 // A radius shorter than a cell reaches no grid line: every horizon would be open.
