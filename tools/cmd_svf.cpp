@@ -131,7 +131,7 @@ Runner setup(CLI::App& app) {
                  "metadata (SVF_CHECK_*); with --max-error (default 1000 cells) a run whose measured p99 exceeds the "
                  "request runs again with a finer choice; 0: no check")
       ->check(CLI::Range(0, 10000000));
-  app.add_option("--preview", *preview, "Also write a greyscale PNG of the svf band (0 black .. 1 white)");
+  app.add_option("--preview", *preview, "Also write a greyscale PNG of the svf band (0 black .. 1 white, nodata transparent)");
   app.footer(
       "Bands (--products): svf (cosine-weighted, horizontal surface), svf_surface (the cell's tilted surface), "
       "sky_visibility (solid-angle fraction), openness_positive, openness_negative (degrees); raycast with --rays "

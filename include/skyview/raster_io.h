@@ -106,7 +106,8 @@ void write_terrain(const std::string& path, const Terrain& terrain, const WriteO
 void write_png(const std::string& path, int width, int height, int channels, const std::uint8_t* pixels,
                bool overwrite);
 
-// Writes a greyscale 8-bit PNG of `values` scaled linearly from [lo, hi] to [0, 255]; nodata black.
+// Writes a greyscale 8-bit PNG of `values` scaled linearly from [lo, hi] to [0, 255]; where any is nodata
+// (NaN) an alpha channel makes those pixels transparent.
 void write_preview_png(const std::string& path, int width, int height, const float* values, double lo, double hi,
                        bool overwrite);
 
