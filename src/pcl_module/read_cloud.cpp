@@ -11,7 +11,10 @@
 #include <cmath>
 #include <cstring>
 #include <exception>
+#include <fstream>
 #include <limits>
+#include <sstream>
+#include <string>
 
 #include "entry_points.h"
 
@@ -45,8 +48,37 @@ double field_value(const std::uint8_t* p, std::uint8_t type) {
   }
 }
 
+// PCL 1.13's PCD reader crashes on an empty file and on a header without its FIELDS (fixed
+// upstream after Debian's release): a PCD's header must name its fields, their sizes and types,
+// its width, point count and data encoding, in text lines before the data, or it is not read.
+bool pcd_header_complete(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  bool fields = false, size = false, type = false, width = false, points = false;
+  for (int n = 0; n < 64 && std::getline(in, line); ++n) {
+    std::istringstream words(line);
+    std::string key;
+    words >> key;
+    if (key == "FIELDS") fields = true;
+    if (key == "SIZE") size = true;
+    if (key == "TYPE") type = true;
+    if (key == "WIDTH") width = true;
+    if (key == "POINTS") points = true;
+    if (key == "DATA") {
+      std::string encoding;
+      words >> encoding;
+      const bool known = encoding == "ascii" || encoding == "binary" || encoding == "binary_compressed";
+      return known && fields && size && type && width && points;
+    }
+  }
+  return false;
+}
+
 std::string read(const std::string& path, bool ply, std::vector<LasPoint>& points) {
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);  // skyview's own one-line errors instead
+  if (!ply && !pcd_header_complete(path))
+    return "'" + path + "' is not a readable PCD point cloud (no complete header: FIELDS, SIZE, TYPE, WIDTH, " +
+           "POINTS and DATA lines)";
   pcl::PCLPointCloud2 cloud;
   const int rc = ply ? pcl::io::loadPLYFile(path, cloud) : pcl::io::loadPCDFile(path, cloud);
   if (rc < 0) return "'" + path + "' is not a readable " + (ply ? "PLY" : "PCD") + " point cloud";
