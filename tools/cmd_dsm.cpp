@@ -150,7 +150,7 @@ Runner setup(CLI::App& app) {
     const auto holding =
         std::count_if(r.dsm.values().begin(), r.dsm.values().end(), [](float v) { return !std::isnan(v); });
     const double held = static_cast<double>(holding) / static_cast<double>(r.dsm.size());
-    if (!o->out.quiet && !o->dsm.points.empty() && !o->dsm.fill && held < 0.1) {
+    if (!o->dsm.points.empty() && !o->dsm.fill && held < 0.1) {
       std::fprintf(stderr,
                    "Warning: only %.2g%% of the %dx%d cells hold a height: the grid is much finer than the returns; "
                    "give a coarser --res, or --fill\n",

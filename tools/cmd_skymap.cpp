@@ -78,7 +78,7 @@ int run(const SkymapOptions& o) {
 
   std::optional<EpwFile> weather;
   if (!o.epw.empty()) weather = read_epw(o.epw);
-  if (weather && weather->missing_solar_values > 0 && !o.out.quiet) {
+  if (weather && weather->missing_solar_values > 0) {
     std::fprintf(stderr,
                  "Warning: %d irradiance values in '%s' are missing codes, not numbers, negative or above 1600 W/m2; "
                  "read as 0\n",
@@ -99,8 +99,7 @@ int run(const SkymapOptions& o) {
   if (!(std::abs(site.latitude_deg) <= 90.0)) throw Error("--lat must be within -90 .. 90");
   if (!(std::abs(site.longitude_deg) <= 180.0)) throw Error("--lon must be within -180 .. 180");
   if (o.lat.has_value() != o.lon.has_value()) throw Error("give both --lat and --lon, or neither (with --epw)");
-  if (weather && o.lat && !o.out.quiet &&
-      (*o.lat != weather->location.latitude_deg || *o.lon != weather->location.longitude_deg)) {
+  if (weather && o.lat && (*o.lat != weather->location.latitude_deg || *o.lon != weather->location.longitude_deg)) {
     std::fprintf(stderr, "Warning: the sun is placed for --lat %s --lon %s, not for the EPW's site (%s, %s)\n",
                  number_text(*o.lat).c_str(), number_text(*o.lon).c_str(),
                  number_text(weather->location.latitude_deg).c_str(),
@@ -113,15 +112,14 @@ int run(const SkymapOptions& o) {
   if (weather) {
     std::optional<TimePeriod> period;
     if (!o.from.empty())
-      period = TimePeriod{parse_time_option(o.from, o.tz, o.out.quiet).unix_utc,
-                          parse_time_option(o.to, o.tz, o.out.quiet).unix_utc};
+      period = TimePeriod{parse_time_option(o.from, o.tz).unix_utc, parse_time_option(o.to, o.tz).unix_utc};
     steps = epw_steps(*weather, site, period);
     meta["EPW"] = o.epw;
     meta["EPW_MISSING_SOLAR_VALUES"] = std::to_string(weather->missing_solar_values);
     meta["EPW_STEPS"] = "one hour per record at its irradiance instant (--step is not used)";
   } else {
-    steps = regular_steps(site, parse_time_option(o.from, o.tz, o.out.quiet).unix_utc,
-                          parse_time_option(o.to, o.tz, o.out.quiet).unix_utc, parse_duration_s(o.step));
+    steps = regular_steps(site, parse_time_option(o.from, o.tz).unix_utc, parse_time_option(o.to, o.tz).unix_utc,
+                          parse_duration_s(o.step));
     meta["STEP"] = o.step;
   }
   ThreadLimit limit(o.out.threads);
@@ -162,7 +160,7 @@ int run(const SkymapOptions& o) {
                           std::max(0.0, std::cos(s.conditions.sun_zenith)) * s.hours;
   }
   meta["EXTRATERRESTRIAL_HORIZONTAL_WH_M2"] = number_text(extraterrestrial_h);
-  if (direct_h + diffuse_h > extraterrestrial_h && !o.out.quiet) {
+  if (direct_h + diffuse_h > extraterrestrial_h) {
     std::fprintf(stderr,
                  "Warning: the sky's global horizontal exposure, %.1f kWh/m2, exceeds the %.1f kWh/m2 outside the "
                  "atmosphere%s\n",

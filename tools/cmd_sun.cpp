@@ -75,8 +75,8 @@ Period read_period(const Options& o) {
   const bool single = !o.time.empty();
   if (single == (!o.from.empty() || !o.to.empty())) throw Error("give either --time T or --from T1 --to T2");
   if (!single && (o.from.empty() || o.to.empty())) throw Error("--from and --to go together");
-  const ParsedTime a = parse_time_option(single ? o.time : o.from, o.tz, false);
-  const ParsedTime b = single || o.to == o.from ? a : parse_time_option(o.to, o.tz, false);
+  const ParsedTime a = parse_time_option(single ? o.time : o.from, o.tz);
+  const ParsedTime b = single || o.to == o.from ? a : parse_time_option(o.to, o.tz);
   // Events come a day at a time: --step is refused with them (and with --time), not read.
   const bool stepped = !single && !o.events;
   Period p{a.unix_utc, b.unix_utc, stepped ? parse_duration_s(o.step) : 86400.0, {}};

@@ -131,7 +131,8 @@ Runner setup(CLI::App& app) {
                  "metadata (SVF_CHECK_*); with --max-error (default 1000 cells) a run whose measured p99 exceeds the "
                  "request runs again with a finer choice; 0: no check")
       ->check(CLI::Range(0, 10000000));
-  app.add_option("--preview", *preview, "Also write a greyscale PNG of the svf band (0 black .. 1 white, nodata transparent)");
+  app.add_option("--preview", *preview,
+                 "Also write a greyscale PNG of the svf band (0 black .. 1 white, nodata transparent)");
   app.footer(
       "Bands (--products): svf (cosine-weighted, horizontal surface), svf_surface (the cell's tilted surface), "
       "sky_visibility (solid-angle fraction), openness_positive, openness_negative (degrees); raycast with --rays "
@@ -185,8 +186,8 @@ Runner setup(CLI::App& app) {
                      "horizons in %d sectors; p99 %s (95%% bound %s) against %d sectors, near the continuous svf\n",
                      static_cast<long long>(r.error.cells), check->seconds(), four_digits(r.error.p99).c_str(),
                      bound_text(r.p99_upper95).c_str(), four_digits(r.error.max_abs).c_str(), r.error.bias,
-                     check->directions(), four_digits(r.error_fine.p99).c_str(),
-                     bound_text(r.fine_p99_upper95).c_str(), check->fine_directions());
+                     check->directions(), four_digits(r.error_fine.p99).c_str(), bound_text(r.fine_p99_upper95).c_str(),
+                     check->fine_directions());
       }
       if (!job.choice) break;
       // The request is met when the raster's p99 against the near-continuous svf (the finer

@@ -49,7 +49,7 @@ void add_output_options(CLI::App& app, OutputOptions& o) {
       ->allow_extra_args(false)  // one KEY=VALUE a time, as GDAL's -co: `-co A=1 IN OUT` leaves IN and OUT positional
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   app.add_flag("--overwrite", o.overwrite, "Replace an existing output");
-  app.add_flag("-q,--quiet", o.quiet, "No progress on stderr");
+  app.add_flag("-q,--quiet", o.quiet, "No progress or summary on stderr (warnings and errors still)");
   app.add_option("--threads", o.threads, "Worker threads (0 = all cores)")->check(non_negative_number());
 }
 
@@ -66,9 +66,9 @@ void require_extension(const std::string& path, const std::vector<std::string>& 
               " (the format it is written in)");
 }
 
-ParsedTime parse_time_option(const std::string& text, const std::string& zone, bool quiet) {
+ParsedTime parse_time_option(const std::string& text, const std::string& zone) {
   const ParsedTime t = parse_time(text, zone);
-  if (t.ambiguous && !quiet) {
+  if (t.ambiguous) {
     std::fprintf(stderr,
                  "Warning: '%s' occurs twice in %s (clocks set back); taken as the earlier, %s; give a UTC offset "
                  "to choose\n",

@@ -60,9 +60,9 @@ void refuse_unused(const CLI::App& app, const std::string& option, bool used, co
 // format is fixed by what writes it, and a name saying otherwise would mislead every reader.
 void require_extension(const std::string& path, const std::vector<std::string>& extensions, const std::string& what);
 
-// parse_time, warning on stderr (unless `quiet`) when a local time occurs twice and the earlier
+// parse_time, warning on stderr (even under -q) when a local time occurs twice and the earlier
 // instant is taken.
-ParsedTime parse_time_option(const std::string& text, const std::string& zone, bool quiet);
+ParsedTime parse_time_option(const std::string& text, const std::string& zone);
 
 // Limits oneTBB to `threads` workers while alive (0 = no limit).
 class ThreadLimit {
