@@ -109,17 +109,27 @@ int run(const SkymapOptions& o) {
   std::vector<ExposureStep> steps;
   std::map<std::string, std::string> meta;
   if (!o.tz.empty()) check_time_zone(o.tz);
+  // The period's instants as parsed (local times resolved in --tz), recorded in UTC beside the text.
+  std::optional<TimePeriod> period;
+  if (!o.from.empty()) {
+    period = TimePeriod{parse_time_option(o.from, o.tz).unix_utc, parse_time_option(o.to, o.tz).unix_utc};
+    meta["FROM_UTC"] = format_iso_utc(period->from_utc);
+    meta["TO_UTC"] = format_iso_utc(period->to_utc);
+    if (!o.tz.empty()) meta["TIME_ZONE"] = o.tz;
+  }
   if (weather) {
-    std::optional<TimePeriod> period;
-    if (!o.from.empty())
-      period = TimePeriod{parse_time_option(o.from, o.tz).unix_utc, parse_time_option(o.to, o.tz).unix_utc};
     steps = epw_steps(*weather, site, period);
     meta["EPW"] = o.epw;
     meta["EPW_MISSING_SOLAR_VALUES"] = std::to_string(weather->missing_solar_values);
     meta["EPW_STEPS"] = "one hour per record at its irradiance instant (--step is not used)";
   } else {
-    steps = regular_steps(site, parse_time_option(o.from, o.tz).unix_utc, parse_time_option(o.to, o.tz).unix_utc,
-                          parse_duration_s(o.step));
+    const double step_s = parse_duration_s(o.step);
+    // One step would stand for the whole period, its sun at the first instant (a day at 1d read 30.7
+    // kWh/m2 where 1-minute steps give 11.0).
+    if (period && step_s >= period->to_utc - period->from_utc) {
+      throw Error("--step " + o.step + " is not shorter than the period from --from to --to; give a shorter step");
+    }
+    steps = regular_steps(site, period->from_utc, period->to_utc, step_s);
     meta["STEP"] = o.step;
   }
   ThreadLimit limit(o.out.threads);

@@ -71,7 +71,10 @@ TEST(SkymapCli, OptionsTheSkyDoesNotUseAreRefused) {
        "--luminous-efficacy applies only to --sky preetham"},
       {"--albedo 0.5 --lat 1 --lon 1 --from 2024-01-01T00:00Z --to 2024-01-02T00:00Z", "--albedo applies only to"},
       {"--lat 1 --lon 1 --from 2024-01-01T00:00Z --to 2024-01-02T00:00Z --preview x.jpg",
-       "--preview 'x.jpg' must end in .png"}};
+       "--preview 'x.jpg' must end in .png"},
+      // One step would stand for the whole day (30.7 kWh/m2 where 1-minute steps give 11.0).
+      {"--lat 30 --lon 0 --from 2023-06-21T00:00Z --to 2023-06-22T00:00Z --step 1d",
+       "--step 1d is not shorter than the period"}};
   if (!epw.empty()) {
     cases.push_back({"--sky perez-epw --epw " + epw + " --step 10m", "--step applies only to analytic skies"});
     cases.push_back({"--sky perez-epw --epw " + epw + " --turbidity 3", "--turbidity applies only to"});
@@ -92,6 +95,25 @@ TEST(SkymapCli, OptionsTheSkyDoesNotUseAreRefused) {
       moved.output.find("Warning: the sun is placed for --lat 45 --lon 7, not for the EPW's site (41.98, -87.92)"),
       std::string::npos)
       << moved.output;
+  std::filesystem::remove_all(dir);
+}
+
+// The period is recorded as given and as UTC instants, with the zone that resolved it: FROM alone
+// read 2024-06-01T00:00 with nothing to say which midnight.
+TEST(SkymapCli, ThePeriodIsRecordedInUtc) {
+  const std::filesystem::path dir = skyview::test::temp_dir("skymap-utc");
+  const std::string out = (dir / "tz.tif").string();
+  const Result r = run(out +
+                       " --no-preview --size 16 --lat 52 --lon 13 --tz Europe/Berlin --from 2024-06-01T00:00 "
+                       "--to 2024-06-02T00:00");
+  ASSERT_EQ(r.code, 0) << r.output;
+  GDALDatasetUniquePtr ds(GDALDataset::Open(out.c_str(), GDAL_OF_RASTER));
+  ASSERT_TRUE(ds);
+  EXPECT_STREQ(ds->GetMetadataItem("FROM"), "2024-06-01T00:00");
+  EXPECT_STREQ(ds->GetMetadataItem("FROM_UTC"), "2024-05-31T22:00:00Z");
+  EXPECT_STREQ(ds->GetMetadataItem("TO_UTC"), "2024-06-01T22:00:00Z");
+  EXPECT_STREQ(ds->GetMetadataItem("TIME_ZONE"), "Europe/Berlin");
+  ds.reset();
   std::filesystem::remove_all(dir);
 }
 
