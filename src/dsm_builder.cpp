@@ -245,6 +245,14 @@ DsmResult build_dsm(const DsmOptions& o) {
     const HeightUnit z_unit = height_unit(*src->GetRasterBand(1), src->GetSpatialRef(), o.z_scale, d);
     const double z_scale = z_unit.metres;
     out.report.height_units.push_back("'" + d + "': " + z_unit.source);
+    // Packed DEMs (Int16 with a scale of 0.01, say) warp as stored: unpacked after, which the
+    // bilinear weights (summing to one) commute with.
+    int has_scale = 0, has_offset = 0;
+    const double scale = src->GetRasterBand(1)->GetScale(&has_scale);
+    const double offset = src->GetRasterBand(1)->GetOffset(&has_offset);
+    const double unpack_scale = has_scale ? scale : 1.0, unpack_offset = has_offset ? offset : 0.0;
+    if (!std::isfinite(unpack_scale) || unpack_scale == 0.0 || !std::isfinite(unpack_offset))
+      throw Error("band 1 of '" + d + "' has an unusable scale or offset");
     GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
     GDALDatasetUniquePtr dst(mem->Create("", width, height, 1, GDT_Float32, nullptr));
     double gt[6] = {x0, res, 0, y1, 0, -res};
@@ -266,7 +274,7 @@ DsmResult build_dsm(const DsmOptions& o) {
     }
     for (std::size_t i = 0; i < v.size(); ++i) {
       if (std::isnan(terrain.values()[i]) && v[i] > -1e38 && std::isfinite(v[i])) {
-        terrain.values()[i] = static_cast<float>(v[i] * z_scale);
+        terrain.values()[i] = static_cast<float>((v[i] * unpack_scale + unpack_offset) * z_scale);
       }
     }
   }

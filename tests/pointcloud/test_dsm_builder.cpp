@@ -15,6 +15,7 @@
 #include "skyview/synthetic_district.h"
 
 #include <cpl_conv.h>
+#include <gdal_priv.h>
 #include <ogr_spatialref.h>
 #include <unistd.h>
 
@@ -110,6 +111,33 @@ TEST(DsmBuilder, FootprintOnAFlatDemAndACourtyard) {
   DsmOptions missing = d;
   missing.height_field = "height";
   EXPECT_THROW(build_dsm(missing), Error);
+}
+
+// A packed DEM (Int16 centimetres: a scale of 0.01, and an offset) gives metres, as svf reads it;
+// until Dec 5 the DSM held the stored integers, 10000 "m" for 100 m.
+TEST(DsmBuilder, APackedDemIsUnpacked) {
+  const std::string dir = dir_for("packed");
+  const std::string path = dir + "/packed.tif";
+  init_gdal();
+  {
+    GDALDatasetUniquePtr ds(
+        GetGDALDriverManager()->GetDriverByName("GTiff")->Create(path.c_str(), 100, 100, 1, GDT_Int16, nullptr));
+    double gt[6] = {500000, 1, 0, 6400100, 0, -1};
+    ds->SetGeoTransform(gt);
+    ds->SetProjection(wkt("EPSG:32633").c_str());
+    GDALRasterBand* band = ds->GetRasterBand(1);
+    band->SetScale(0.01);
+    band->SetOffset(50.0);
+    std::vector<std::int16_t> raw(100 * 100, 5000);  // 5000 * 0.01 + 50 = 100 m
+    raw[50 * 100 + 50] = 6000;                       // 110 m
+    ASSERT_EQ(band->RasterIO(GF_Write, 0, 0, 100, 100, raw.data(), 100, 100, GDT_Int16, 0, 0), CE_None);
+  }
+  DsmOptions d;
+  d.dems = {path};
+  const DsmResult r = build_dsm(d);
+  ASSERT_EQ(r.dsm.width(), 100);
+  EXPECT_FLOAT_EQ(r.dsm(10, 10), 100.0f);
+  EXPECT_FLOAT_EQ(r.dsm(50, 50), 110.0f);
 }
 
 // A building off the DEM has no terrain to stand on: it burns nothing and is counted as skipped
