@@ -85,7 +85,7 @@ Runner setup(CLI::App& app) {
       "lies inside it; a footprint without height takes the 90th percentile of the returns inside it. Without a "
       "DEM, --dtm and footprint heights above the terrain use the clouds' ground returns (class 2, else the "
       "morphological filter), holes filled.");
-  return [o] {
+  return [o, &app] {
     std::vector<std::string> inputs = o->dsm.dems;
     inputs.insert(inputs.end(), o->dsm.points.begin(), o->dsm.points.end());
     inputs.push_back(o->dsm.footprints);
@@ -98,13 +98,21 @@ Runner setup(CLI::App& app) {
     }
     o->dsm.want_dtm = !o->dtm.empty();
     if (!o->te.empty()) o->dsm.te = std::array<double, 4>{o->te[0], o->te[1], o->te[2], o->te[3]};
+    // LAS classes are 0..255; "1,,2", "2x" and an empty list are typing errors, not filters.
+    if (app.count("--classes") > 0 && o->classes.empty())
+      throw Error("--classes is empty: give classes, or leave it out");
     std::stringstream in(o->classes);
     for (std::string item; std::getline(in, item, ',');) {
+      std::size_t used = 0;
+      int c = -1;
       try {
-        o->dsm.classes.push_back(std::stoi(item));
+        c = std::stoi(item, &used);
       } catch (const std::exception&) {
-        throw Error("--classes takes comma-separated integers, not '" + item + "'");
+        used = 0;
       }
+      if (used == 0 || used != item.size()) throw Error("--classes takes comma-separated integers, not '" + item + "'");
+      if (c < 0 || c > 255) throw Error("--classes: class " + item + " is outside the LAS classes 0 to 255");
+      o->dsm.classes.push_back(c);
     }
     const DsmResult r = build_dsm(o->dsm);
     const DsmReport& rep = r.report;

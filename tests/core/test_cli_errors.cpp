@@ -201,6 +201,19 @@ TEST_F(CliErrors, ASparseCloudOnAFineGridIsSaid) {
   EXPECT_NE(r.err.find("cells hold a height: the grid is much finer than the returns"), std::string::npos) << r.err;
 }
 
+// LAS classes are 0..255: 300 used to pass and end in "none of the returns falls on the grid".
+TEST_F(CliErrors, DsmClassesOutsideTheLasRangeAreRefused) {
+  write_las(dir + "/two.las", {{0.5, 0.5, 1.0, 0, 1, 1, 2}, {9.5, 9.5, 2.0, 0, 1, 1, 6}}, [] {
+    LasWriteOptions o;
+    o.crs_wkt = wkt_of("EPSG:32633");
+    return o;
+  }());
+  expect_one_line_error(run_skyview("dsm " + dir + "/c.tif --points " + dir + "/two.las --classes 2,300", dir),
+                        "class 300 is outside the LAS classes 0 to 255");
+  expect_one_line_error(run_skyview("dsm " + dir + "/c.tif --points " + dir + "/two.las --classes 2,,6", dir),
+                        "comma-separated integers, not ''");
+}
+
 // GROUND_FROM says which returns were taken as ground: class 2 with --ground-only on a classified
 // cloud, none where no ground was asked for (it read "all returns" until Dec 3, with --classes 6 too).
 TEST_F(CliErrors, DsmSaysWhichReturnsWereGround) {
