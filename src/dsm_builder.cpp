@@ -122,9 +122,12 @@ DsmResult build_dsm(const DsmOptions& o) {
   const GridStatistic stat = parse_grid_statistic(o.stat);
   // Inputs and their CRSs.
   std::vector<std::unique_ptr<PointCloud>> clouds;
+  std::vector<std::string> doubted;  // the clouds' readers' warnings, for the report
   for (const auto& p : o.points) {
     clouds.push_back(open_point_cloud(p));
     if (clouds.back()->point_count() == 0) throw Error("'" + p + "' holds no points");
+    const auto& doubts = clouds.back()->warnings();
+    doubted.insert(doubted.end(), doubts.begin(), doubts.end());
   }
   auto cloud_crs = [&](const PointCloud& c) { return o.s_srs.empty() ? c.crs_wkt() : o.s_srs; };
   std::string first_crs;
@@ -228,6 +231,7 @@ DsmResult build_dsm(const DsmOptions& o) {
   }
   const int width = static_cast<int>(cols), height = static_cast<int>(rows);
   DsmResult out;
+  out.report.warnings = doubted;
   out.georef.has_geotransform = true;
   out.georef.geotransform = {x0, res, 0, y1, 0, -res};
   // Heights are written in metres, so a vertical CRS in another unit would mislabel them.

@@ -116,6 +116,7 @@ Runner setup(CLI::App& app) {
     }
     const DsmResult r = build_dsm(o->dsm);
     const DsmReport& rep = r.report;
+    for (const std::string& w : rep.warnings) std::fprintf(stderr, "Warning: %s\n", w.c_str());
     WriteOptions wo;
     wo.format = o->out.format;
     wo.creation_options = o->out.creation_options;

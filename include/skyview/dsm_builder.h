@@ -50,6 +50,7 @@ struct DsmReport {
   std::int64_t cells_from_points = 0, cells_filled = 0;
   int footprints_burned = 0, footprints_repaired = 0, footprints_skipped = 0, footprints_from_cloud = 0;
   std::vector<std::string> height_units;  // per DEM, cloud and footprint layer with height fields
+  std::vector<std::string> warnings;      // what the inputs' readers doubt (PointCloud::warnings)
 };
 
 struct DsmResult {

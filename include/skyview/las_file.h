@@ -25,6 +25,9 @@ struct LasHeader {
   // Metres per z unit where the GeoTIFF keys state it (VerticalUnitsGeoKey: metre, foot, US survey
   // foot); 0 when they do not.
   double z_unit_metres = 0.0;
+  // Whole point records' worth of bytes after the counted points, before the EVLRs or the file's
+  // end: points a header that undercounts leaves unread (0 for a well-formed file).
+  std::uint64_t records_beyond_count = 0;
 };
 
 struct LasPoint {

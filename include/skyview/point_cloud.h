@@ -24,6 +24,8 @@ class PointCloud {
   // Metres per z unit where the file states it apart from its CRS (LAS GeoTIFF keys); 0 otherwise.
   double z_unit_metres() const { return z_unit_metres_; }
   std::uint64_t point_count() const { return point_count_; }
+  // What the reader doubts but reads anyway (a LAS header that counts fewer points than follow).
+  const std::vector<std::string>& warnings() const { return warnings_; }
   // Bounding box of the points (min x, min y, max x, max y) in the file's CRS.
   const double* bounds() const { return bounds_; }
 
@@ -49,6 +51,7 @@ class PointCloud {
   std::string path_, crs_wkt_;
   double z_unit_metres_ = 0.0;
   std::uint64_t point_count_ = 0;
+  std::vector<std::string> warnings_;
   double bounds_[4] = {0, 0, 0, 0};
 };
 

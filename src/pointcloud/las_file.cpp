@@ -183,6 +183,15 @@ void LasReader::parse() {
          std::to_string(hd.record_length) + " bytes but only " +
          std::to_string((size - hd.point_offset) / hd.record_length) + " fit in the file");
   }
+  if (hd.record_length != 0) {
+    const std::uint64_t points_end = hd.point_offset + hd.point_count * hd.record_length;
+    std::uint64_t limit =
+        hd.evlr_count > 0 && hd.evlr_offset >= points_end && hd.evlr_offset <= size ? hd.evlr_offset : size;
+    // LAS 1.3 and 1.4 may keep waveform packets after the points.
+    const std::uint64_t waveforms = hd.version_minor >= 3 && hd.header_size >= 235 ? get<std::uint64_t>(h + 227) : 0;
+    if (waveforms >= points_end && waveforms < limit) limit = waveforms;
+    hd.records_beyond_count = limit > points_end ? (limit - points_end) / hd.record_length : 0;
+  }
   // VLRs sit between the header and the point data; each must fit there.
   std::string wkt, geokeys;
   std::uint64_t at = hd.header_size;

@@ -20,6 +20,11 @@ class LasCloud final : public PointCloud {
     crs_wkt_ = h.crs_wkt;
     z_unit_metres_ = h.z_unit_metres;
     point_count_ = h.point_count;
+    if (h.records_beyond_count > 0) {
+      warnings_.push_back("'" + path + "' holds " + std::to_string(h.records_beyond_count) +
+                          " more point records' worth of bytes after the " + std::to_string(h.point_count) +
+                          " points its header counts; only those are read");
+    }
     // The bounds from the points, not the header's min and max: writers leave those stale (a grid
     // from them dropped half a cloud without a word) or raw (simple1_3.las, a LAS sample, holds its
     // unscaled integers there). One more pass over the file, as the text clouds make.

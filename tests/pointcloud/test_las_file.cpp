@@ -15,6 +15,7 @@
 #include "core/test_support.h"
 #include "skyview/error.h"
 #include "skyview/las_file.h"
+#include "skyview/point_cloud.h"
 #include "temp_dir.h"
 
 using namespace skyview;
@@ -56,6 +57,7 @@ TEST(LasFile, EverySharedSampleOpensWithItsDocumentedCountsAndBounds) {
     EXPECT_EQ(r.header().version_minor, s.minor) << s.file;
     EXPECT_EQ(r.header().point_format, s.format) << s.file;
     EXPECT_EQ(r.header().point_count, s.points) << s.file;
+    EXPECT_EQ(r.header().records_beyond_count, 0u) << s.file << ": waveforms and EVLRs are not points";
     const auto pts = read_all(r, 333);
     ASSERT_EQ(pts.size(), s.points) << s.file;
     // laspy's simple1_3.las stores header bounds that disagree with its points (its "unusual
@@ -69,6 +71,25 @@ TEST(LasFile, EverySharedSampleOpensWithItsDocumentedCountsAndBounds) {
       }
     }
   }
+}
+
+// A header that counts fewer points than follow is read as it says, and the records past its
+// count are reported (until Dec 5, "10 of 10 points used" with 1055 more in the file, unsaid).
+TEST(LasFile, RecordsBeyondTheHeadersCountAreReported) {
+  const std::string path = test::temp_dir("lascount") + "/under.las";
+  write_las(path, {{0, 0, 1, 0, 1, 1, 2}, {1, 1, 2, 0, 1, 1, 2}, {2, 2, 3, 0, 1, 1, 2}}, {});
+  {
+    std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+    const std::uint32_t one = 1;
+    f.seekp(107);
+    f.write(reinterpret_cast<const char*>(&one), 4);
+  }
+  const LasReader r = LasReader::open_file(path);
+  EXPECT_EQ(r.header().point_count, 1u);
+  EXPECT_EQ(r.header().records_beyond_count, 2u);
+  const auto cloud = open_point_cloud(path);
+  ASSERT_EQ(cloud->warnings().size(), 1u);
+  EXPECT_NE(cloud->warnings()[0].find("holds 2 more point records"), std::string::npos) << cloud->warnings()[0];
 }
 
 TEST(LasFile, TheSameReturnsInLas11AndLas12ReadIdentically) {
