@@ -141,7 +141,22 @@ Runner setup(CLI::App& app) {
     if (!units.empty()) wo.metadata["HEIGHT_UNITS"] = units;
     write_bands(o->output, r.dsm.width(), r.dsm.height(), r.georef, {{"height", "metre", r.dsm.data(), {}}}, wo);
     if (!o->dtm.empty() && r.dtm.size() > 0) {
-      write_bands(o->dtm, r.dtm.width(), r.dtm.height(), r.georef, {{"terrain_height", "metre", r.dtm.data(), {}}}, wo);
+      // The terrain's own provenance: the DSM's statistic, fills and footprint counts say nothing of it.
+      WriteOptions dtm = wo;
+      dtm.metadata = {
+          {"SKYVIEW_VERSION", version()},
+          {"SKYVIEW_COMMAND", command_line()},
+          {"TERRAIN_FROM", o->dsm.dems.empty() ? "the mean of the clouds' ground returns per cell (GROUND_FROM), holes "
+                                                 "filled"
+                                               : "the DEMs warped onto the grid (bilinear), later ones filling earlier "
+                                                 "ones' nodata"}};
+      if (o->dsm.dems.empty()) {
+        dtm.metadata["GROUND_FROM"] = wo.metadata["GROUND_FROM"];
+        dtm.metadata["POINTS_READ"] = wo.metadata["POINTS_READ"];
+      }
+      if (wo.metadata.count("HEIGHT_UNITS")) dtm.metadata["HEIGHT_UNITS"] = wo.metadata["HEIGHT_UNITS"];
+      write_bands(o->dtm, r.dtm.width(), r.dtm.height(), r.georef, {{"terrain_height", "metre", r.dtm.data(), {}}},
+                  dtm);
     }
     if (!o->out.quiet) {
       std::fprintf(stderr,

@@ -227,6 +227,18 @@ TEST_F(CliErrors, DsmSaysWhichReturnsWereGround) {
     ASSERT_TRUE(ds);
     EXPECT_STREQ(ds->GetMetadataItem("GROUND_FROM"), ground.c_str()) << option;
   }
+  // The terrain written beside it carries its own provenance, not the DSM's statistic and counts.
+  const std::string dtm = dir + "/dtm.tif";
+  ASSERT_EQ(
+      run_skyview("dsm " + dir + "/dsm.tif --points " + dir + "/d.las --ground-only --dtm " + dtm + " --overwrite", dir)
+          .exit_code,
+      0);
+  GDALDatasetUniquePtr ds(GDALDataset::Open(dtm.c_str(), GDAL_OF_RASTER));
+  ASSERT_TRUE(ds);
+  EXPECT_NE(std::string(ds->GetMetadataItem("TERRAIN_FROM")).find("ground returns"), std::string::npos);
+  EXPECT_STREQ(ds->GetMetadataItem("GROUND_FROM"), "class 2");
+  EXPECT_EQ(ds->GetMetadataItem("POINT_STATISTIC"), nullptr);
+  EXPECT_EQ(ds->GetMetadataItem("FOOTPRINTS_BURNED"), nullptr);
 }
 
 // PCL sits in a module loaded on first use (src/pointcloud/pcl_module.h): a run that needs no PCL
