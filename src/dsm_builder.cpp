@@ -488,6 +488,17 @@ DsmResult build_dsm(const DsmOptions& o) {
   // for --dtm must not change it.
   out.dsm = Grid<float>(width, height, kNaN);
   std::vector<char> burned(fp_height.size(), 0);  // a footprint with a height that reached a cell
+  // A height above the terrain is measured from the lowest ground under the building (as
+  // OpenStreetMap's height=* is, from the lowest point of its perimeter): one flat top per
+  // footprint, not a roof that copies the slope beneath it.
+  std::vector<double> fp_ground(fp_height.size(), std::numeric_limits<double>::infinity());
+  for (std::size_t k = 0; k < out.dsm.size(); ++k) {
+    const float id = footprint_id.values()[k], ground = terrain.values()[k];
+    if (id > 0 && !std::isnan(ground)) {
+      double& low = fp_ground[static_cast<std::size_t>(id) - 1];
+      low = std::min(low, static_cast<double>(ground));
+    }
+  }
   for (std::size_t k = 0; k < out.dsm.size(); ++k) {
     const float ground = terrain.values()[k];
     float v = cloud_terrain ? kNaN : ground;
@@ -500,8 +511,8 @@ DsmResult build_dsm(const DsmOptions& o) {
           top = fp_base[f] + fp_height[f];
         } else if (o.absolute_heights) {
           top = fp_height[f];
-        } else if (!std::isnan(ground)) {
-          top = ground + fp_height[f];
+        } else if (std::isfinite(fp_ground[f])) {
+          top = fp_ground[f] + fp_height[f];
         }
       }
       if (!std::isnan(top)) {

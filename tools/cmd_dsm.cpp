@@ -28,7 +28,8 @@ Runner setup(CLI::App& app) {
                  "CRS of the point clouds (default: each file's own; PLY/PCD/text carry none and are else taken to be "
                  "in the output CRS)");
   app.add_option("--footprints", o->dsm.footprints, "Building footprints, any OGR polygon layer");
-  app.add_option("--height-field", o->dsm.height_field, "Footprint height attribute (above the terrain)");
+  app.add_option("--height-field", o->dsm.height_field,
+                 "Footprint height attribute (above the lowest terrain under it: a flat top)");
   app.add_option("--base-field", o->dsm.base_field, "Footprint base height attribute (absolute)");
   app.add_flag("--absolute-heights", o->dsm.absolute_heights, "The height field is absolute, not above the terrain");
   app.add_option("--res", o->dsm.res, "Cell size in output CRS units (default: the DEM's, else 1)")

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "core/test_support.h"
 #include "skyview/dsm_builder.h"
@@ -111,6 +112,35 @@ TEST(DsmBuilder, FootprintOnAFlatDemAndACourtyard) {
   DsmOptions missing = d;
   missing.height_field = "height";
   EXPECT_THROW(build_dsm(missing), Error);
+}
+
+// On sloping ground a building's height counts from the lowest ground under it, and its top is
+// flat (until Dec 5 the roof copied the slope: terrain + height cell by cell).
+TEST(DsmBuilder, ARoofOnASlopeIsFlatAboveTheLowestGround) {
+  const std::string dir = dir_for("slope");
+  GeoReference g;
+  g.has_geotransform = true;
+  g.geotransform = {500000, 1, 0, 6400100, 0, -1};
+  g.crs_wkt = wkt("EPSG:32633");
+  Terrain t = rasterize([](double x, double) { return 0.3 * x; }, 100, 100, g, 100.0);
+  write_terrain(dir + "/slope.tif", t, {});
+  write_utm_features(dir + "/b.geojson", R"(
+     {"type":"Feature","properties":{"h":20},"geometry":{"type":"Polygon","coordinates":[[[500010,6400010],[500030,6400010],[500030,6400030],[500010,6400030],[500010,6400010]]]}})");
+  DsmOptions d;
+  d.dems = {dir + "/slope.tif"};
+  d.footprints = dir + "/b.geojson";
+  d.height_field = "h";
+  const DsmResult r = build_dsm(d);
+  // The footprint covers columns 10..29 and rows 70..89; the ground under it rises by 0.3 m a column.
+  float lowest = std::numeric_limits<float>::infinity();
+  for (int row = 70; row < 90; ++row) {
+    for (int col = 10; col < 30; ++col) lowest = std::min(lowest, r.dtm(col, row));
+  }
+  EXPECT_GT(r.dtm(29, 80) - r.dtm(10, 80), 5.0f) << "the ground slopes under the building";
+  for (int row = 70; row < 90; ++row) {
+    for (int col = 10; col < 30; ++col) ASSERT_FLOAT_EQ(r.dsm(col, row), lowest + 20.0f) << col << ", " << row;
+  }
+  EXPECT_EQ(r.report.footprints_burned, 1);
 }
 
 // A packed DEM (Int16 centimetres: a scale of 0.01, and an offset) gives metres, as svf reads it;
