@@ -107,6 +107,7 @@ TEST(SkymapCli, ThePeriodIsRecordedInUtc) {
                        " --no-preview --size 16 --lat 52 --lon 13 --tz Europe/Berlin --from 2024-06-01T00:00 "
                        "--to 2024-06-02T00:00");
   ASSERT_EQ(r.code, 0) << r.output;
+  skyview::init_gdal();
   GDALDatasetUniquePtr ds(GDALDataset::Open(out.c_str(), GDAL_OF_RASTER));
   ASSERT_TRUE(ds);
   EXPECT_STREQ(ds->GetMetadataItem("FROM"), "2024-06-01T00:00");
