@@ -6,9 +6,11 @@
 #include <ogrsf_frmts.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include "skyview/error.h"
 #include "skyview/height_unit.h"
@@ -169,9 +171,12 @@ DsmResult build_dsm(const DsmOptions& o) {
   if (out_crs.empty()) throw Error("no input carries a CRS; give --t_srs");
   const OGRSpatialReference target = srs_from(out_crs, "--t_srs");
 
-  // The grid: extent from --te or the inputs, snapped to the resolution.
+  // The grid: extent from --te or the inputs, snapped to the resolution: to the first DEM's own
+  // lattice where its cells are the output's (same CRS, north-up, square cells of the resolution),
+  // so that its heights are copied, not resampled half a cell off; else to multiples of it.
   double res = o.res;
   Extent ext;
+  std::optional<std::array<double, 2>> lattice;
   for (const auto& d : o.dems) {
     auto ds = open_raster(d);
     double gt[6];
@@ -182,6 +187,9 @@ DsmResult build_dsm(const DsmOptions& o) {
       throw Error("give --res: '" + d + "' is in another CRS than the output, so its cell size does not carry over");
     }
     if (res <= 0) res = std::abs(gt[1]);
+    const bool square_north_up = gt[2] == 0.0 && gt[4] == 0.0 && gt[1] > 0.0 && gt[5] == -gt[1];
+    if (&d == &o.dems.front() && square_north_up && std::abs(gt[1] - res) <= 1e-9 * res && s.IsSame(&target))
+      lattice = std::array<double, 2>{gt[0], gt[3]};
     auto t = transform(s, target, "'" + d + "'");
     add_box(ext, gt[0], gt[3] + gt[5] * ds->GetRasterYSize(), gt[0] + gt[1] * ds->GetRasterXSize(), gt[3], t.get(),
             "'" + d + "'");
@@ -212,7 +220,10 @@ DsmResult build_dsm(const DsmOptions& o) {
       throw Error("--te is xmin ymin xmax ymax, with xmin < xmax and ymin < ymax");
   }
   if (ext.empty()) throw Error("the inputs cover no area (empty point cloud or extent)");
-  const double x0 = std::floor(ext.x0 / res) * res, y1 = std::ceil(ext.y1 / res) * res;
+  // (Within a billionth of a cell an extent already on the lattice stays there.)
+  const double lx = lattice ? (*lattice)[0] : 0.0, ly = lattice ? (*lattice)[1] : 0.0;
+  const double x0 = lx + std::floor((ext.x0 - lx) / res + 1e-9) * res;
+  const double y1 = ly + std::ceil((ext.y1 - ly) / res - 1e-9) * res;
   double cols = std::ceil((ext.x1 - x0) / res - 1e-9), rows = std::ceil((y1 - ext.y0) / res - 1e-9);
   // A cloud's largest x and smallest y lie on the grid's far edges, just outside its half-open cells.
   if (!o.te && std::isfinite(cloud_ext.x0)) {

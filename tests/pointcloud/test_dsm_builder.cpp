@@ -114,6 +114,30 @@ TEST(DsmBuilder, FootprintOnAFlatDemAndACourtyard) {
   EXPECT_THROW(build_dsm(missing), Error);
 }
 
+// A DEM whose cells sit half a metre off the whole metres (a LiDAR terrain's 563999.5) keeps its
+// own lattice: its heights are copied, not resampled half a cell off with a nodata row and column
+// added (until Dec 5 a 200² DEM became 201² of bilinear averages).
+TEST(DsmBuilder, ADemKeepsItsOwnLattice) {
+  const std::string dir = dir_for("lattice");
+  GeoReference g;
+  g.has_geotransform = true;
+  g.geotransform = {500000.5, 1, 0, 6400100.5, 0, -1};
+  g.crs_wkt = wkt("EPSG:32633");
+  const Terrain t = rasterize([](double x, double y) { return 0.3 * x + 0.01 * x * y; }, 50, 40, g, 100.0);
+  write_terrain(dir + "/half.tif", t, {});
+  DsmOptions d;
+  d.dems = {dir + "/half.tif"};
+  const DsmResult r = build_dsm(d);
+  ASSERT_EQ(r.dsm.width(), 50);
+  ASSERT_EQ(r.dsm.height(), 40);
+  EXPECT_EQ(r.georef.geotransform[0], 500000.5);
+  EXPECT_EQ(r.georef.geotransform[3], 6400100.5);
+  for (int row = 0; row < 40; ++row) {
+    for (int col = 0; col < 50; ++col)
+      ASSERT_NEAR(r.dsm(col, row), t.heights(col, row) + t.base_height, 1e-3) << col << ", " << row;
+  }
+}
+
 // On sloping ground a building's height counts from the lowest ground under it, and its top is
 // flat (until Dec 5 the roof copied the slope: terrain + height cell by cell).
 TEST(DsmBuilder, ARoofOnASlopeIsFlatAboveTheLowestGround) {
