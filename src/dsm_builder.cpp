@@ -52,6 +52,8 @@ struct Extent {
     x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
   }
   bool empty() const { return !(x1 > x0 && y1 > y0); }
+  // No point at all; a single point or a line of them has a place but no area.
+  bool none() const { return !(x1 >= x0 && y1 >= y0); }
 };
 
 // Adds a box's corners and edge midpoints (they survive curved reprojections better); a box none
@@ -219,7 +221,12 @@ DsmResult build_dsm(const DsmOptions& o) {
     if (!(ext.x1 > ext.x0 && ext.y1 > ext.y0))
       throw Error("--te is xmin ymin xmax ymax, with xmin < xmax and ymin < ymax");
   }
-  if (ext.empty()) throw Error("the inputs cover no area (empty point cloud or extent)");
+  // Clouds' returns lie in a closed box: a single return, or a row of them, still makes a grid
+  // (the extra column and row below).
+  const bool cloud_only_extent = !o.te && std::isfinite(cloud_ext.x0) && ext.x0 == cloud_ext.x0 &&
+                                 ext.x1 == cloud_ext.x1 && ext.y0 == cloud_ext.y0 && ext.y1 == cloud_ext.y1;
+  if (ext.none() || (ext.empty() && !cloud_only_extent))
+    throw Error("the inputs cover no area (empty point cloud or extent)");
   // (Within a billionth of a cell an extent already on the lattice stays there.)
   const double lx = lattice ? (*lattice)[0] : 0.0, ly = lattice ? (*lattice)[1] : 0.0;
   const double x0 = lx + std::floor((ext.x0 - lx) / res + 1e-9) * res;

@@ -123,6 +123,27 @@ TEST(PointClouds, BadCloudsGiveOneLineErrors) {
   }
 }
 
+// A single return, or a row of them, has a place but no area: it still makes a grid of one cell,
+// or one row (until Dec 5: "the inputs cover no area (empty point cloud ...)" for a cloud that is not).
+TEST(PointClouds, ASingleReturnOrARowOfThemMakesAGrid) {
+  const std::string dir = test::temp_dir("onepoint");
+  write_text(dir + "/one.xyz", "500000.5 6400000.5 10\n");
+  write_text(dir + "/row.xyz", "500000.5 6400000.5 10\n500005.5 6400000.5 12\n");
+  DsmOptions one;
+  one.points = {dir + "/one.xyz"};
+  one.s_srs = "EPSG:32633";
+  const DsmResult a = build_dsm(one);
+  ASSERT_EQ(a.dsm.width(), 1);
+  ASSERT_EQ(a.dsm.height(), 1);
+  EXPECT_FLOAT_EQ(a.dsm(0, 0), 10.0f);
+  DsmOptions row = one;
+  row.points = {dir + "/row.xyz"};
+  const DsmResult b = build_dsm(row);
+  EXPECT_EQ(b.dsm.width(), 6);
+  EXPECT_EQ(b.dsm.height(), 1);
+  EXPECT_FLOAT_EQ(b.dsm(5, 0), 12.0f);
+}
+
 TEST(PointClouds, IdwWeighsReturnsByInverseSquaredDistance) {
   // A at the centre of cell (2, 2), B half a cell east of it: midway to the centre of (3, 2).
   PointGridder g({10, 10, 0.0, 10.0, 1.0}, GridStatistic::idw, 1.0, 2.0);
