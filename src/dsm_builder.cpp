@@ -327,11 +327,26 @@ DsmResult build_dsm(const DsmOptions& o) {
     int polygons = 0;
     for (auto& feature : *layer) {
       OGRGeometry* g = feature->GetGeometryRef();
-      if (!g) continue;
-      const OGRwkbGeometryType type = wkbFlatten(g->getGeometryType());
-      if (type != wkbPolygon && type != wkbMultiPolygon) continue;
+      const OGRwkbGeometryType type = g ? wkbFlatten(g->getGeometryType()) : wkbUnknown;
+      std::unique_ptr<OGRGeometry> geom;
+      if (type == wkbPolygon || type == wkbMultiPolygon) {
+        geom.reset(g->clone());
+      } else if (type == wkbGeometryCollection) {  // its polygons are the footprint
+        auto parts = std::make_unique<OGRMultiPolygon>();
+        for (const OGRGeometry* part : *g->toGeometryCollection()) {
+          const OGRwkbGeometryType pt = wkbFlatten(part->getGeometryType());
+          if (pt == wkbPolygon) parts->addGeometry(part);
+          if (pt == wkbMultiPolygon) {
+            for (const OGRPolygon* p : *part->toMultiPolygon()) parts->addGeometry(p);
+          }
+        }
+        if (!parts->IsEmpty()) geom = std::move(parts);
+      }
+      if (!geom) {  // a point, a line, no geometry: not a building's outline
+        ++out.report.footprints_not_polygons;
+        continue;
+      }
       ++polygons;
-      std::unique_ptr<OGRGeometry> geom(g->clone());
       if (!geom->IsValid()) {
         std::unique_ptr<OGRGeometry> fixed(geom->MakeValid());
         if (!fixed || !fixed->IsValid()) {

@@ -136,7 +136,8 @@ Runner setup(CLI::App& app) {
                    {"FOOTPRINTS_BURNED", std::to_string(rep.footprints_burned)},
                    {"FOOTPRINTS_FROM_CLOUD", std::to_string(rep.footprints_from_cloud)},
                    {"FOOTPRINTS_REPAIRED", std::to_string(rep.footprints_repaired)},
-                   {"FOOTPRINTS_SKIPPED", std::to_string(rep.footprints_skipped)}};
+                   {"FOOTPRINTS_SKIPPED", std::to_string(rep.footprints_skipped)},
+                   {"FOOTPRINTS_NOT_POLYGONS", std::to_string(rep.footprints_not_polygons)}};
     std::string units;
     for (const std::string& u : rep.height_units) units += (units.empty() ? "" : "; ") + u;
     if (!units.empty()) wo.metadata["HEIGHT_UNITS"] = units;
@@ -180,6 +181,12 @@ Runner setup(CLI::App& app) {
                    "Warning: only %.2g%% of the %dx%d cells hold a height: the grid is much finer than the returns; "
                    "give a coarser --res, or --fill\n",
                    100.0 * held, r.dsm.width(), r.dsm.height());
+    }
+    if (rep.footprints_not_polygons > 0) {
+      std::fprintf(stderr, "Warning: %d %s of '%s' %s no polygon (points, lines or no geometry) and %s left out\n",
+                   rep.footprints_not_polygons, rep.footprints_not_polygons == 1 ? "feature" : "features",
+                   o->dsm.footprints.c_str(), rep.footprints_not_polygons == 1 ? "has" : "have",
+                   rep.footprints_not_polygons == 1 ? "was" : "were");
     }
     if (rep.footprints_skipped > 0) {
       std::fprintf(stderr,

@@ -49,6 +49,7 @@ struct DsmReport {
   std::string ground_source;  // "class 2" or "morphological filter" with --ground-only
   std::int64_t cells_from_points = 0, cells_filled = 0;
   int footprints_burned = 0, footprints_repaired = 0, footprints_skipped = 0, footprints_from_cloud = 0;
+  int footprints_not_polygons = 0;        // features without a polygon (points, lines, no geometry): left out
   std::vector<std::string> height_units;  // per DEM, cloud and footprint layer with height fields
   std::vector<std::string> warnings;      // what the inputs' readers doubt (PointCloud::warnings)
 };

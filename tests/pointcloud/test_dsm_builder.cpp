@@ -194,6 +194,28 @@ TEST(DsmBuilder, APackedDemIsUnpacked) {
   EXPECT_FLOAT_EQ(r.dsm(50, 50), 110.0f);
 }
 
+// A collection's polygons are a footprint; points, lines and features without a geometry are
+// counted as left out (until Dec 5 they vanished uncounted, the collection's polygon with them).
+TEST(DsmBuilder, FeaturesWithoutPolygonsAreCountedAndCollectionsBurned) {
+  const std::string dir = dir_for("notpolygons");
+  const std::string dem = flat_dem(dir);
+  write_utm_features(dir + "/mixed.geojson", R"(
+     {"type":"Feature","properties":{"h":20},"geometry":{"type":"Point","coordinates":[500050,6400050]}},
+     {"type":"Feature","properties":{"h":20},"geometry":{"type":"LineString","coordinates":[[500050,6400050],[500060,6400060]]}},
+     {"type":"Feature","properties":{"h":20},"geometry":null},
+     {"type":"Feature","properties":{"h":20},"geometry":{"type":"GeometryCollection","geometries":[
+        {"type":"Point","coordinates":[500000,6400000]},
+        {"type":"Polygon","coordinates":[[[500010,6400010],[500030,6400010],[500030,6400030],[500010,6400030],[500010,6400010]]]}]}})");
+  DsmOptions d;
+  d.dems = {dem};
+  d.footprints = dir + "/mixed.geojson";
+  d.height_field = "h";
+  const DsmResult r = build_dsm(d);
+  EXPECT_EQ(r.report.footprints_not_polygons, 3);
+  EXPECT_EQ(r.report.footprints_burned, 1);
+  EXPECT_FLOAT_EQ(r.dsm(20, 80), 120.0f);
+}
+
 // A building off the DEM has no terrain to stand on: it burns nothing and is counted as skipped
 // (until Dec 3 it was counted as burned). With no DEM at all the error says what is missing.
 TEST(DsmBuilder, AFootprintOffTheDemIsSkippedNotBurned) {
