@@ -205,11 +205,29 @@ DsmResult build_dsm(const DsmOptions& o) {
     add_box(cloud_ext, b[0], b[1], b[2], b[3], t.get(), "'" + c->path() + "'");
   }
   if (layer) {
-    OGREnvelope env;
-    if (layer->GetExtent(&env) == OGRERR_NONE) {
-      TransformPtr t;
-      if (layer->GetSpatialRef()) t = transform(*layer->GetSpatialRef(), target, "'" + o.footprints + "'");
-      add_box(ext, env.MinX, env.MinY, env.MaxX, env.MaxY, t.get(), "'" + o.footprints + "'");
+    // The box of the footprints themselves, transformed: the layer's box transformed whole grows
+    // with the rotation between the CRSs (a district in EPSG:2263 came out 228² for 128²).
+    TransformPtr t;
+    if (layer->GetSpatialRef()) t = transform(*layer->GetSpatialRef(), target, "'" + o.footprints + "'");
+    layer->ResetReading();
+    int placed = 0, failed = 0;
+    for (auto& feature : *layer) {
+      const OGRGeometry* g = feature->GetGeometryRef();
+      if (!g || g->IsEmpty()) continue;
+      std::unique_ptr<OGRGeometry> there(g->clone());
+      if (t && there->transform(t.get()) != OGRERR_NONE) {  // counted as skipped when burned
+        ++failed;
+        continue;
+      }
+      OGREnvelope env;
+      there->getEnvelope(&env);
+      ext.add(env.MinX, env.MinY);
+      ext.add(env.MaxX, env.MaxY);
+      ++placed;
+    }
+    if (placed == 0 && failed > 0) {
+      throw Error("no footprint of '" + o.footprints +
+                  "' transforms into the output CRS: its coordinates do not fit its CRS");
     }
   }
   if (res <= 0 && target.IsGeographic()) {

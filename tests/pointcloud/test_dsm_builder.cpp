@@ -18,6 +18,7 @@
 #include <cpl_conv.h>
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
+#include <ogrsf_frmts.h>
 #include <unistd.h>
 
 using namespace skyview;
@@ -214,6 +215,51 @@ TEST(DsmBuilder, FeaturesWithoutPolygonsAreCountedAndCollectionsBurned) {
   EXPECT_EQ(r.report.footprints_not_polygons, 3);
   EXPECT_EQ(r.report.footprints_burned, 1);
   EXPECT_FLOAT_EQ(r.dsm(20, 80), 120.0f);
+}
+
+// Footprints in a CRS turned far from the output's (New York's state plane, EPSG:2263, over a
+// district in UTM 33N) widen the grid by no more than their own outlines: the layer's box
+// transformed whole made a 100² DEM's grid 150² of nodata around it (until Dec 5).
+TEST(DsmBuilder, FootprintsInATurnedCrsDoNotWidenTheGrid) {
+  const std::string dir = dir_for("turned");
+  const std::string dem = flat_dem(dir);
+  OGRSpatialReference utm, ny;
+  utm.importFromEPSG(32633);
+  ny.importFromEPSG(2263);
+  utm.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  ny.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  std::unique_ptr<OGRCoordinateTransformation> to_ny(OGRCreateCoordinateTransformation(&utm, &ny));
+  ASSERT_TRUE(to_ny);
+  const std::string path = dir + "/ny.gpkg";
+  {
+    GDALDatasetUniquePtr ds(
+        GetGDALDriverManager()->GetDriverByName("GPKG")->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
+    OGRLayer* layer = ds->CreateLayer("b", &ny, wkbPolygon, nullptr);
+    OGRFieldDefn h("h", OFTReal);
+    layer->CreateField(&h);
+    // Two buildings at opposite corners of the DEM, so the layer's box is the DEM's.
+    for (const double at : {1.0, 89.0}) {
+      OGRLinearRing ring;
+      for (const auto& [dx, dy] : {std::pair{0.0, 0.0}, {10.0, 0.0}, {10.0, 10.0}, {0.0, 10.0}, {0.0, 0.0}})
+        ring.addPoint(500000 + at + dx, 6400000 + at + dy);
+      OGRPolygon polygon;
+      polygon.addRing(&ring);
+      ASSERT_EQ(polygon.transform(to_ny.get()), OGRERR_NONE);
+      OGRFeature f(layer->GetLayerDefn());
+      f.SetField("h", 60.0);  // feet
+      f.SetGeometry(&polygon);
+      ASSERT_EQ(layer->CreateFeature(&f), OGRERR_NONE);
+    }
+  }
+  DsmOptions d;
+  d.dems = {dem};
+  d.footprints = path;
+  d.height_field = "h";
+  d.footprint_z_scale = 0.3048;
+  const DsmResult r = build_dsm(d);
+  EXPECT_EQ(r.dsm.width(), 100);
+  EXPECT_EQ(r.dsm.height(), 100);
+  EXPECT_EQ(r.report.footprints_burned, 2);
 }
 
 // A building off the DEM has no terrain to stand on: it burns nothing and is counted as skipped
