@@ -108,8 +108,7 @@ std::string read(const std::string& path, bool ply, std::vector<LasPoint>& point
       const auto& field = cloud.fields[static_cast<std::size_t>(f)];
       return field_value(rec + field.offset, field.datatype);
     };
-    LasPoint p{value(x), value(y), value(z), 0, 1, 1, 1};
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) continue;  // PCD's NaN = no return
+    LasPoint p{value(x), value(y), value(z), 0, 1, 1, 1};  // non-finite ones are counted and left out by the caller
     if (cls >= 0) {
       const double c = value(cls);
       if (c >= 0 && c <= 255) p.classification = static_cast<std::uint8_t>(c);

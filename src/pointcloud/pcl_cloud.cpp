@@ -1,7 +1,9 @@
 // PLY and PCD clouds, read by the PCL module (pcl_module.h) into memory: PCL loads a whole file
 // anyway, so the points are handed over at once (32 bytes each) and then served in chunks.
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <string>
 
 #include "pcl_module.h"
 #include "skyview/error.h"
@@ -15,6 +17,18 @@ class PclCloud final : public PointCloud {
   PclCloud(const std::string& path, bool ply) : PointCloud(path) {
     const std::string error = detail::pcl_module().read_cloud(path, ply, points_);
     if (!error.empty()) throw Error(error);
+    // NaN coordinates are PCD's mark of a missing return (organised clouds keep their grid): left
+    // out, but counted and said, not lost without a word.
+    const auto finite = [](const LasPoint& p) {
+      return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+    };
+    const auto kept = std::stable_partition(points_.begin(), points_.end(), finite);
+    const std::size_t dropped = static_cast<std::size_t>(points_.end() - kept);
+    points_.erase(kept, points_.end());
+    if (dropped > 0) {
+      warnings_.push_back(std::to_string(dropped) + " of the " + std::to_string(points_.size() + dropped) +
+                          " points of '" + path + "' have no finite x, y and z (a missing return) and are left out");
+    }
     start_bounds();
     for (const LasPoint& p : points_) include_in_bounds(p.x, p.y);
     settle_bounds();
