@@ -238,6 +238,7 @@ DsmResult build_dsm(const DsmOptions& o) {
     ext = {(*o.te)[0], (*o.te)[1], (*o.te)[2], (*o.te)[3]};
     if (!(ext.x1 > ext.x0 && ext.y1 > ext.y0))
       throw Error("--te is xmin ymin xmax ymax, with xmin < xmax and ymin < ymax");
+    lattice = std::array<double, 2>{ext.x0, ext.y1};  // its corner is the grid's, as gdalwarp -te keeps it
   }
   // Clouds' returns lie in a closed box: a single return, or a row of them, still makes a grid
   // (the extra column and row below).

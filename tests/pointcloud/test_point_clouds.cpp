@@ -142,6 +142,20 @@ TEST(PointClouds, NonFinitePlyAndPcdPointsAreCounted) {
   }
 }
 
+// --te is the grid's extent, as gdalwarp -te keeps it: its corner is the grid's corner, not
+// snapped to whole multiples of the resolution (until Dec 5, 500000.25 became 500000).
+TEST(PointClouds, TeIsKeptExactly) {
+  const std::string dir = test::temp_dir("te");
+  write_text(dir + "/c.xyz", "500001 6400001 5\n500004 6400004 8\n");
+  DsmOptions d = grid_10m(dir + "/c.xyz");
+  d.te = std::array<double, 4>{500000.25, 6400000.25, 500010.25, 6400010.25};
+  const DsmResult r = build_dsm(d);
+  EXPECT_EQ(r.georef.geotransform[0], 500000.25);
+  EXPECT_EQ(r.georef.geotransform[3], 6400010.25);
+  EXPECT_EQ(r.dsm.width(), 10);
+  EXPECT_EQ(r.dsm.height(), 10);
+}
+
 // A single return, or a row of them, has a place but no area: it still makes a grid of one cell,
 // or one row (until Dec 5: "the inputs cover no area (empty point cloud ...)" for a cloud that is not).
 TEST(PointClouds, ASingleReturnOrARowOfThemMakesAGrid) {
