@@ -125,13 +125,13 @@ DsmResult build_dsm(const DsmOptions& o) {
   }
   const GridStatistic stat = parse_grid_statistic(o.stat);
   // Inputs and their CRSs.
+  DsmResult out;
   std::vector<std::unique_ptr<PointCloud>> clouds;
-  std::vector<std::string> doubted;  // the clouds' readers' warnings, for the report
   for (const auto& p : o.points) {
     clouds.push_back(open_point_cloud(p));
     if (clouds.back()->point_count() == 0) throw Error("'" + p + "' holds no points");
     const auto& doubts = clouds.back()->warnings();
-    doubted.insert(doubted.end(), doubts.begin(), doubts.end());
+    out.report.warnings.insert(out.report.warnings.end(), doubts.begin(), doubts.end());
   }
   auto cloud_crs = [&](const PointCloud& c) { return o.s_srs.empty() ? c.crs_wkt() : o.s_srs; };
   std::string first_crs;
@@ -267,8 +267,6 @@ DsmResult build_dsm(const DsmOptions& o) {
                 " cells; check --res and the extent");
   }
   const int width = static_cast<int>(cols), height = static_cast<int>(rows);
-  DsmResult out;
-  out.report.warnings = doubted;
   out.georef.has_geotransform = true;
   out.georef.geotransform = {x0, res, 0, y1, 0, -res};
   // Heights are written in metres, so a vertical CRS in another unit would mislabel them.
@@ -286,14 +284,8 @@ DsmResult build_dsm(const DsmOptions& o) {
     const HeightUnit z_unit = height_unit(*src->GetRasterBand(1), src->GetSpatialRef(), o.z_scale, d);
     const double z_scale = z_unit.metres;
     out.report.height_units.push_back("'" + d + "': " + z_unit.source);
-    // Packed DEMs (Int16 with a scale of 0.01, say) warp as stored: unpacked after, which the
-    // bilinear weights (summing to one) commute with.
-    int has_scale = 0, has_offset = 0;
-    const double scale = src->GetRasterBand(1)->GetScale(&has_scale);
-    const double offset = src->GetRasterBand(1)->GetOffset(&has_offset);
-    const double unpack_scale = has_scale ? scale : 1.0, unpack_offset = has_offset ? offset : 0.0;
-    if (!std::isfinite(unpack_scale) || unpack_scale == 0.0 || !std::isfinite(unpack_offset))
-      throw Error("band 1 of '" + d + "' has an unusable scale or offset");
+    // Packed DEMs warp as stored and are unpacked after.
+    const BandPacking packing = band_packing(*src->GetRasterBand(1), d, 1);
     GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
     GDALDatasetUniquePtr dst(mem->Create("", width, height, 1, GDT_Float32, nullptr));
     double gt[6] = {x0, res, 0, y1, 0, -res};
@@ -315,7 +307,7 @@ DsmResult build_dsm(const DsmOptions& o) {
     }
     for (std::size_t i = 0; i < v.size(); ++i) {
       if (std::isnan(terrain.values()[i]) && v[i] > -1e38 && std::isfinite(v[i])) {
-        terrain.values()[i] = static_cast<float>((v[i] * unpack_scale + unpack_offset) * z_scale);
+        terrain.values()[i] = static_cast<float>((v[i] * packing.scale + packing.offset) * z_scale);
       }
     }
   }

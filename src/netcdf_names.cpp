@@ -11,6 +11,7 @@
 #include <cctype>
 
 #include "skyview/error.h"
+#include "skyview/temporary_outputs.h"
 
 namespace skyview::detail {
 namespace {
@@ -60,9 +61,7 @@ void name_netcdf_variables(const std::string& path, const std::string& final_pat
   if (nc_inq_attlen(nc, NC_GLOBAL, "history", &length) == NC_NOERR && length > 0) {
     std::string history(length, '\0');
     if (nc_get_att_text(nc, NC_GLOBAL, "history", history.data()) == NC_NOERR) {
-      for (std::size_t at = history.find(path); at != std::string::npos;
-           at = history.find(path, at + final_path.size()))
-        history.replace(at, path.size(), final_path);
+      name_final_output(history, path, final_path);
       check(nc_put_att_text(nc, NC_GLOBAL, "history", history.size(), history.c_str()), path, "history");
     }
   }

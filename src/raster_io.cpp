@@ -144,16 +144,10 @@ RawBand read_raw_band(const std::string& path, int band_index) {
                   "': " + last_gdal_error("GDAL gives no reason; the file may be truncated or corrupt"));
     }
   }
-  // Packed rasters (Int16 with a scale of 0.01, say) hold value = raw * scale + offset: unpack them,
-  // nodata first (it is a raw value), so that a scaled value can never pass for nodata.
-  int has_scale = 0, has_offset = 0;
-  const double scale = band->GetScale(&has_scale), offset = band->GetOffset(&has_offset);
-  if ((has_scale && scale != 1.0) || (has_offset && offset != 0.0)) {
-    if (!std::isfinite(scale) || scale == 0.0 || !std::isfinite(offset)) {
-      throw Error("band " + std::to_string(band_index) + " of '" + path + "' has an unusable scale or offset");
-    }
+  // Unpacked nodata first (it is a raw value), so that a scaled value can never pass for nodata.
+  if (const BandPacking packing = band_packing(*band, path, band_index); packing.packed()) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    for (double& v : r.values) v = r.has_nodata && v == r.nodata ? nan : v * scale + offset;
+    for (double& v : r.values) v = r.has_nodata && v == r.nodata ? nan : v * packing.scale + packing.offset;
     if (r.has_nodata) r.nodata = nan;
   }
   return r;
@@ -177,6 +171,16 @@ GeoReference georeference_of(GDALDataset& ds) {
 }
 
 }  // namespace
+
+BandPacking band_packing(GDALRasterBand& band, const std::string& path, int band_index) {
+  BandPacking p;
+  p.scale = band.GetScale();  // 1 and 0 where the band states none
+  p.offset = band.GetOffset();
+  if (!std::isfinite(p.scale) || p.scale == 0.0 || !std::isfinite(p.offset)) {
+    throw Error("band " + std::to_string(band_index) + " of '" + path + "' has an unusable scale or offset");
+  }
+  return p;
+}
 
 RasterBand read_band(const std::string& path, int band_index) {
   RawBand raw = read_raw_band(path, band_index);
@@ -331,16 +335,9 @@ void check_outputs_apart(const std::vector<std::string>& outputs, const std::vec
   }
 }
 
-namespace {
-
-// Registered for removal should a signal stop the run (temporary_outputs.h).
-std::string temporary_name(const std::string& path) { return temporary_output_name(path); }
-
-}  // namespace
-
 void write_output_file(const std::string& path, const std::string& bytes, bool overwrite) {
   check_output_writable(path, overwrite);
-  const std::string tmp = temporary_name(path);
+  const std::string tmp = temporary_output_name(path);
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     out << bytes;
@@ -348,6 +345,7 @@ void write_output_file(const std::string& path, const std::string& bytes, bool o
     if (!out) {
       std::error_code ignored;
       std::filesystem::remove(tmp, ignored);
+      forget_temporary(tmp);
       throw Error("cannot write '" + path + "'");
     }
   }
@@ -457,13 +455,12 @@ void move_into_place(GDALDriver* driver, const std::string& tmp, const std::stri
       VSIUnlink(path.c_str());
     }
   }
-  const bool moved = driver->Rename(path.c_str(), tmp.c_str()) == CE_None;
-  if (moved) forget_temporary(tmp);
-  if (!moved) {
+  if (driver->Rename(path.c_str(), tmp.c_str()) != CE_None) {
     const std::string why = last_gdal_error();
     remove_temporary(driver, tmp);
     throw Error("cannot move the finished output into place at '" + path + "': " + why);
   }
+  forget_temporary(tmp);
 }
 
 // Copies a finished memory dataset into `path` in `format`, under a temporary name first.
@@ -472,7 +469,7 @@ void commit_dataset(GDALDataset* mem, const std::string& path, const std::string
   check_output_writable(path, overwrite);
   GDALDriver* driver = output_driver(format);
   const CPLStringList opts = creation_options(format, mem->GetRasterBand(1)->GetRasterDataType(), user_options);
-  const std::string tmp = temporary_name(path);
+  const std::string tmp = temporary_output_name(path);
   CPLErrorReset();
   GDALDataset* out = driver->CreateCopy(tmp.c_str(), mem, FALSE, opts.List(), nullptr, nullptr);
   const std::string why = out ? close_written(out) : last_gdal_error();
@@ -634,7 +631,7 @@ BandWriter::BandWriter(const std::string& path, int width, int height, int bands
   if (s.direct) {
     const CPLStringList opts =
         creation_options(options.format, GDT_Float32, options.creation_options, options.rows_at_once);
-    s.tmp = temporary_name(path);
+    s.tmp = temporary_output_name(path);
     CPLErrorReset();
     s.ds.reset(s.driver->Create(s.tmp.c_str(), width, height, bands, GDT_Float32, opts.List()));
     if (!s.ds) {
@@ -718,17 +715,7 @@ void BandWriter::finish() {
     std::ifstream in(header);
     std::string text((std::istreambuf_iterator<char>(in)), {});
     in.close();
-    // The path as given, or its name alone.
-    const std::string from = std::filesystem::path(s.tmp).filename().string();
-    const std::string to = std::filesystem::path(s.path).filename().string();
-    const std::size_t at = text.find(from);
-    if (at == std::string::npos) continue;
-    const std::size_t dir = s.tmp.size() - from.size();
-    if (at >= dir && text.compare(at - dir, dir, s.tmp, 0, dir) == 0) {
-      text.replace(at - dir, s.tmp.size(), s.path);
-    } else {
-      text.replace(at, from.size(), to);
-    }
+    name_final_output(text, s.tmp, s.path);
     std::ofstream(header, std::ios::trunc) << text;
   }
   if (why.empty() && netcdf) {

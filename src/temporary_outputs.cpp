@@ -70,6 +70,12 @@ void forget_temporary(const std::string& temporary) {
   }
 }
 
+void name_final_output(std::string& text, const std::string& temporary, const std::string& final_path) {
+  for (std::size_t at = text.find(temporary); at != std::string::npos;
+       at = text.find(temporary, at + final_path.size()))
+    text.replace(at, temporary.size(), final_path);
+}
+
 void remove_temporary_outputs_on_signals() {
   for (const int signal : {SIGINT, SIGTERM, SIGHUP}) std::signal(signal, on_signal);
 }

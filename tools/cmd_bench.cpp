@@ -75,38 +75,32 @@ Runner setup(CLI::App& app) {
                    o->reference_directions, finest);
     }
     std::error_code ec;
-    // The folders this run makes, deepest first: a refused run leaves none of them behind.
+    // The folders this run makes, deepest first: a run that fails before writing its files leaves
+    // none of them behind (removed only while empty).
     std::vector<std::filesystem::path> made;
     for (std::filesystem::path p = std::filesystem::absolute(o->out, ec);
          !p.empty() && !std::filesystem::exists(p, ec) && p != p.parent_path(); p = p.parent_path())
       made.push_back(p);
-    std::filesystem::create_directories(o->out, ec);
-    if (ec || !std::filesystem::is_directory(o->out))
-      throw Error("--out '" + o->out + "' is not a folder that can be made");
-    Terrain terrain;
-    ReadReport report;
-    try {
-      for (const auto& n : names) {
-        check_outputs_apart({o->out + "/" + n}, {o->input});
-        check_output_writable(o->out + "/" + n, o->overwrite);
-      }
-      ReadOptions ro;
-      ro.band = o->band;
-      ro.z_scale = o->z_scale;
-      terrain = read_terrain(o->input, ro, &report);
-    } catch (...) {
-      for (const auto& folder : made) std::filesystem::remove(folder, ec);  // only while empty
-      throw;
-    }
-    // A run that fails before writing leaves none of the folders it made.
     struct RemoveIfEmpty {
       std::vector<std::filesystem::path>* folders;
       ~RemoveIfEmpty() {
         std::error_code e;
         if (folders)
-          for (const auto& folder : *folders) std::filesystem::remove(folder, e);  // only while empty
+          for (const auto& folder : *folders) std::filesystem::remove(folder, e);
       }
     } remove_if_failed{&made};
+    std::filesystem::create_directories(o->out, ec);
+    if (ec || !std::filesystem::is_directory(o->out))
+      throw Error("--out '" + o->out + "' is not a folder that can be made");
+    for (const auto& n : names) {
+      check_outputs_apart({o->out + "/" + n}, {o->input});
+      check_output_writable(o->out + "/" + n, o->overwrite);
+    }
+    ReadOptions ro;
+    ro.band = o->band;
+    ro.z_scale = o->z_scale;
+    ReadReport report;
+    const Terrain terrain = read_terrain(o->input, ro, &report);
     if (!o->quiet) std::fprintf(stderr, "reference: raycast with %d directions...\n", o->reference_directions);
     const BenchReference ref = compute_reference(terrain, o->reference_directions, origin);
     if (!o->quiet) {

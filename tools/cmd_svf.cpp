@@ -61,9 +61,12 @@ std::string four_digits(double v) {
 // The fewest cells whose p99 bounds the raster's with 95% confidence (299: 0.99^n must fall
 // under 0.05); fewer cells give a p99 but no bound.
 int cells_for_a_bound() {
-  int n = 1;
-  while (quantile_upper_rank(n, 0.99, 0.95) == 0) ++n;
-  return n;
+  static const int cells = [] {
+    int n = 1;
+    while (quantile_upper_rank(n, 0.99, 0.95) == 0) ++n;
+    return n;
+  }();
+  return cells;
 }
 
 std::string bound_text(double bound) {

@@ -10,6 +10,8 @@
 #include "skyview/grid.h"
 #include "skyview/terrain.h"
 
+class GDALRasterBand;
+
 namespace skyview {
 
 // Registers GDAL drivers once and routes GDAL's own messages to stderr as one line each.
@@ -32,6 +34,16 @@ struct ReadReport {
   double z_scale = 1.0;     // the metres per height unit applied
   std::string height_unit;  // what gave it (HeightUnit::source)
 };
+
+// A packed band (Int16 centimetres, say) holds value = raw * scale + offset: GDAL's band scale and
+// offset, 1 and 0 where it states none. read_terrain and read_band unpack with it; so does
+// skyview dsm after warping a DEM (the bilinear weights, summing to one, commute with it).
+struct BandPacking {
+  double scale = 1.0, offset = 0.0;
+  bool packed() const { return scale != 1.0 || offset != 0.0; }
+};
+// Throws, naming band `band_index` of `path`, for a scale or offset nothing can be unpacked with.
+BandPacking band_packing(GDALRasterBand& band, const std::string& path, int band_index);
 
 // Loads one band as a Terrain. Cells are nodata where they hold the band's nodata value or NaN,
 // or where the band's GDAL mask (an alpha band, a mask band or file) is 0. Throws skyview::Error (one line, naming the

@@ -12,6 +12,10 @@ namespace skyview {
 std::string temporary_output_name(const std::string& path);
 void forget_temporary(const std::string& temporary);
 
+// Text a driver wrote into the file (ENVI's header description, netCDF's history) names the
+// temporary file it created: every `temporary` in `text` becomes `final_path`.
+void name_final_output(std::string& text, const std::string& temporary, const std::string& final_path);
+
 // Installs handlers for SIGINT, SIGTERM and SIGHUP that remove every registered temporary file and
 // then end the process as the signal would have. For executables; a library does not take over
 // its host's signals.

@@ -19,12 +19,8 @@ class PclCloud final : public PointCloud {
     if (!error.empty()) throw Error(error);
     // NaN coordinates are PCD's mark of a missing return (organised clouds keep their grid): left
     // out, but counted and said, not lost without a word.
-    const auto finite = [](const LasPoint& p) {
-      return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-    };
-    const auto kept = std::stable_partition(points_.begin(), points_.end(), finite);
-    const std::size_t dropped = static_cast<std::size_t>(points_.end() - kept);
-    points_.erase(kept, points_.end());
+    const std::size_t dropped = std::erase_if(
+        points_, [](const LasPoint& p) { return !std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z); });
     if (dropped > 0) {
       warnings_.push_back(std::to_string(dropped) + " of the " + std::to_string(points_.size() + dropped) +
                           " points of '" + path + "' have no finite x, y and z (a missing return) and are left out");

@@ -146,6 +146,11 @@ class CompareCli : public ::testing::Test {
     std::ifstream in(err_file);
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, std::string(std::istreambuf_iterator<char>(in), {})};
   }
+  // Statistics of value against reference with `dem` as --dem and --max-slope 5.
+  nlohmann::json flat_stats(const Grid<float>& dem) const {
+    write_dem(dir + "/dem.tif", dem);
+    return stats(dir + "/value.tif " + dir + "/reference.tif --dem " + dir + "/dem.tif --max-slope 5");
+  }
   nlohmann::json stats(const std::string& args) const {
     const RunResult r = run(args + " -q --overwrite --json " + dir + "/stats.json");
     EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -180,10 +185,8 @@ TEST_F(CompareCli, ScaleAndOffsetApplyToTheJudgedRaster) {
 TEST_F(CompareCli, MaxSlopeLeavesOutSteepCells) {
   Grid<float> dem(12, 10, 0.0f);
   for (int row = 0; row < 10; ++row) dem(5, row) = 10.0f;
-  write_dem(dir + "/dem.tif", dem);
   const nlohmann::json all = stats(dir + "/value.tif " + dir + "/reference.tif");
-  const nlohmann::json flat =
-      stats(dir + "/value.tif " + dir + "/reference.tif --dem " + dir + "/dem.tif --max-slope 5");
+  const nlohmann::json flat = flat_stats(dem);
   EXPECT_EQ(all["cells"], 100);
   // Columns 4 and 6 are steep. Along the wall Horn's differences cancel, and at its two end cells
   // the differences along it fall back to one side, which is level too.
@@ -197,9 +200,7 @@ TEST_F(CompareCli, MaxSlopeLeavesOutSteepCells) {
 TEST_F(CompareCli, MaxSlopeCountsOnlyCellsValidInBoth) {
   Grid<float> dem(12, 10, 0.0f);
   for (int row = 0; row < 10; ++row) dem(10, row) = 10.0f;
-  write_dem(dir + "/dem.tif", dem);
-  const nlohmann::json flat =
-      stats(dir + "/value.tif " + dir + "/reference.tif --dem " + dir + "/dem.tif --max-slope 5");
+  const nlohmann::json flat = flat_stats(dem);
   EXPECT_EQ(flat["left_out_steep"], 10);
   EXPECT_EQ(flat["cells"], 90);
   write(dir + "/empty.tif", Grid<float>(12, 10, kNaN));
@@ -213,9 +214,7 @@ TEST_F(CompareCli, MaxSlopeCountsOnlyCellsValidInBoth) {
 TEST_F(CompareCli, MaxSlopeLeavesOutCellsWithoutADemHeight) {
   Grid<float> dem(12, 10, 0.0f);
   dem(2, 2) = dem(2, 3) = kNaN;
-  write_dem(dir + "/dem.tif", dem);
-  const nlohmann::json flat =
-      stats(dir + "/value.tif " + dir + "/reference.tif --dem " + dir + "/dem.tif --max-slope 5");
+  const nlohmann::json flat = flat_stats(dem);
   EXPECT_EQ(flat["left_out_no_dem_height"], 2);
   EXPECT_EQ(flat["left_out_steep"], 0);
   EXPECT_EQ(flat["cells"], 98);
