@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <random>
 
-#include "skyview/dsm_builder.h"
-#include "skyview/las_file.h"
+#include "skyview/dsm/dsm_builder.h"
+#include "skyview/dsm/las_file.h"
 
 namespace {
 

@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "skyview/horizon_engine.h"
-#include "skyview/raster_io.h"
-#include "skyview/sky_view.h"
-#include "skyview/synthetic.h"
+#include "skyview/horizon/horizon_engine.h"
+#include "skyview/raster/raster_io.h"
+#include "skyview/sky_view/sky_view.h"
+#include "skyview/synthetic/synthetic.h"
 
 namespace {
 

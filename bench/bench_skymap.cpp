@@ -4,10 +4,10 @@
 
 #include <filesystem>
 
-#include "skyview/epw.h"
-#include "skyview/exposure_map.h"
-#include "skyview/exposure_steps.h"
-#include "skyview/sky_models.h"
+#include "skyview/sky/epw.h"
+#include "skyview/sky/exposure_map.h"
+#include "skyview/sky/exposure_steps.h"
+#include "skyview/sky/sky_models.h"
 
 namespace {
 

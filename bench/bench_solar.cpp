@@ -2,9 +2,9 @@
 // second, and time parsing. Run: build/bench_solar --benchmark_min_time=1s
 #include <benchmark/benchmark.h>
 
-#include "skyview/solar_position.h"
-#include "skyview/sun_events.h"
-#include "skyview/time_parse.h"
+#include "skyview/solar/solar_position.h"
+#include "skyview/solar/sun_events.h"
+#include "skyview/solar/time_parse.h"
 
 namespace {
 

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "command.h"
-#include "skyview/error.h"
-#include "skyview/method_benchmark.h"
-#include "skyview/raster_io.h"
+#include "skyview/core/error.h"
+#include "skyview/benchmark/method_benchmark.h"
+#include "skyview/raster/raster_io.h"
 
 namespace skyview::cli {
 namespace {

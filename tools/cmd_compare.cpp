@@ -9,10 +9,10 @@
 #include <nlohmann/json.hpp>
 
 #include "command.h"
-#include "skyview/error.h"
-#include "skyview/error_stats.h"
-#include "skyview/raster_io.h"
-#include "skyview/sky_view.h"
+#include "skyview/core/error.h"
+#include "skyview/sky_view/error_stats.h"
+#include "skyview/raster/raster_io.h"
+#include "skyview/sky_view/sky_view.h"
 
 namespace skyview::cli {
 namespace {

@@ -4,10 +4,10 @@
 #include <sstream>
 
 #include "command.h"
-#include "skyview/dsm_builder.h"
-#include "skyview/error.h"
-#include "skyview/raster_io.h"
-#include "skyview/version.h"
+#include "skyview/dsm/dsm_builder.h"
+#include "skyview/core/error.h"
+#include "skyview/raster/raster_io.h"
+#include "skyview/core/version.h"
 
 namespace skyview::cli {
 namespace {

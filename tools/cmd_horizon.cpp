@@ -4,7 +4,7 @@
 #include <string>
 
 #include "horizon_job.h"
-#include "skyview/number_text.h"
+#include "skyview/core/number_text.h"
 
 namespace skyview::cli {
 namespace {

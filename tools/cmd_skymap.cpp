@@ -9,17 +9,17 @@
 #include <optional>
 
 #include "command.h"
-#include "skyview/epw.h"
-#include "skyview/error.h"
-#include "skyview/exposure_map.h"
-#include "skyview/exposure_preview.h"
-#include "skyview/exposure_steps.h"
-#include "skyview/number_text.h"
-#include "skyview/raster_io.h"
-#include "skyview/sky_model.h"
-#include "skyview/sky_models.h"
-#include "skyview/time_parse.h"
-#include "skyview/version.h"
+#include "skyview/sky/epw.h"
+#include "skyview/core/error.h"
+#include "skyview/sky/exposure_map.h"
+#include "skyview/sky/exposure_preview.h"
+#include "skyview/sky/exposure_steps.h"
+#include "skyview/core/number_text.h"
+#include "skyview/raster/raster_io.h"
+#include "skyview/sky/sky_model.h"
+#include "skyview/sky/sky_models.h"
+#include "skyview/solar/time_parse.h"
+#include "skyview/core/version.h"
 
 namespace skyview::cli {
 namespace {

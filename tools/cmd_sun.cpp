@@ -10,12 +10,12 @@
 #include <vector>
 
 #include "command.h"
-#include "skyview/civil_time.h"
-#include "skyview/error.h"
-#include "skyview/shadow_angles.h"
-#include "skyview/solar_position.h"
-#include "skyview/sun_events.h"
-#include "skyview/time_parse.h"
+#include "skyview/solar/civil_time.h"
+#include "skyview/core/error.h"
+#include "skyview/solar/shadow_angles.h"
+#include "skyview/solar/solar_position.h"
+#include "skyview/solar/sun_events.h"
+#include "skyview/solar/time_parse.h"
 
 namespace skyview::cli {
 namespace {

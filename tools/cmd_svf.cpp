@@ -5,9 +5,9 @@
 #include <optional>
 #include <sstream>
 
-#include "skyview/error.h"
-#include "skyview/number_text.h"
-#include "skyview/svf_check.h"
+#include "skyview/core/error.h"
+#include "skyview/core/number_text.h"
+#include "skyview/sky_view/svf_check.h"
 
 #include "horizon_job.h"
 

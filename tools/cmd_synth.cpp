@@ -1,10 +1,10 @@
 // skyview synth: writes the synthetic and analytic test rasters (sample_dems/ is made with it).
 #include "command.h"
-#include "skyview/error.h"
-#include "skyview/raster_io.h"
-#include "skyview/synthetic.h"
-#include "skyview/synthetic_district.h"
-#include "skyview/version.h"
+#include "skyview/core/error.h"
+#include "skyview/raster/raster_io.h"
+#include "skyview/synthetic/synthetic.h"
+#include "skyview/synthetic/synthetic_district.h"
+#include "skyview/core/version.h"
 
 #include <cpl_conv.h>
 #include <ogr_spatialref.h>

@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <functional>
 
-#include "skyview/error.h"
-#include "skyview/lowercase.h"
+#include "skyview/core/error.h"
+#include "skyview/core/lowercase.h"
 
 #include <tbb/global_control.h>
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "skyview/time_parse.h"
+#include "skyview/solar/time_parse.h"
 
 namespace skyview::cli {
 

@@ -6,11 +6,11 @@
 
 #include <optional>
 
-#include "skyview/accuracy_choice.h"
-#include "skyview/error.h"
-#include "skyview/number_text.h"
-#include "skyview/sky_view.h"
-#include "skyview/version.h"
+#include "skyview/sky_view/accuracy_choice.h"
+#include "skyview/core/error.h"
+#include "skyview/core/number_text.h"
+#include "skyview/sky_view/sky_view.h"
+#include "skyview/core/version.h"
 
 namespace skyview::cli {
 

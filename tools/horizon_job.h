@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "command.h"
-#include "skyview/accuracy_choice.h"
-#include "skyview/horizon_engine.h"
-#include "skyview/raster_io.h"
-#include "skyview/sky_view.h"
+#include "skyview/sky_view/accuracy_choice.h"
+#include "skyview/horizon/horizon_engine.h"
+#include "skyview/raster/raster_io.h"
+#include "skyview/sky_view/sky_view.h"
 
 namespace skyview::cli {
 

@@ -5,10 +5,10 @@
 #include <vector>
 
 #include "command.h"
-#include "skyview/error.h"
-#include "skyview/raster_io.h"
-#include "skyview/temporary_outputs.h"
-#include "skyview/version.h"
+#include "skyview/core/error.h"
+#include "skyview/raster/raster_io.h"
+#include "skyview/raster/temporary_outputs.h"
+#include "skyview/core/version.h"
 
 namespace {
 

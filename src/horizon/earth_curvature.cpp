@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "ray_scan.h"
-#include "skyview/error.h"
+#include "skyview/core/error.h"
 
 namespace skyview::detail {
 

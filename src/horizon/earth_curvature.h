@@ -4,7 +4,7 @@
 // Folding the drop into the target's height keeps every method exact in the same model.
 #include <string>
 
-#include "skyview/horizon_engine.h"
+#include "skyview/horizon/horizon_engine.h"
 
 namespace skyview::detail {
 

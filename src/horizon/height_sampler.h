@@ -4,7 +4,7 @@
 // skipped: nodata never occludes.
 #include <cmath>
 
-#include "skyview/terrain.h"
+#include "skyview/raster/terrain.h"
 
 namespace skyview::detail {
 

@@ -1,4 +1,4 @@
-#include "skyview/horizon_engine.h"
+#include "skyview/horizon/horizon_engine.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "earth_curvature.h"
 #include "methods.h"
-#include "skyview/error.h"
+#include "skyview/core/error.h"
 
 namespace skyview {
 

@@ -7,7 +7,7 @@
 
 #include "methods.h"
 #include "ray_scan.h"
-#include "skyview/number_text.h"
+#include "skyview/core/number_text.h"
 
 namespace skyview::detail {
 namespace {

@@ -3,7 +3,7 @@
 #include <memory>
 #include <vector>
 
-#include "skyview/horizon_engine.h"
+#include "skyview/horizon/horizon_engine.h"
 
 namespace skyview::detail {
 

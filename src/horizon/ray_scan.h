@@ -25,7 +25,7 @@
 
 #include "earth_curvature.h"
 #include "height_sampler.h"
-#include "skyview/horizon_engine.h"
+#include "skyview/horizon/horizon_engine.h"
 
 namespace skyview::detail {
 

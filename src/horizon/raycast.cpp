@@ -20,9 +20,9 @@
 
 #include "methods.h"
 #include "ray_scan.h"
-#include "skyview/error.h"
-#include "skyview/number_text.h"
-#include "skyview/surface_mesh.h"
+#include "skyview/core/error.h"
+#include "skyview/core/number_text.h"
+#include "skyview/horizon/surface_mesh.h"
 
 namespace skyview::detail {
 namespace {

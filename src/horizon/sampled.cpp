@@ -9,8 +9,8 @@
 
 #include "methods.h"
 #include "ray_scan.h"
-#include "skyview/error.h"
-#include "skyview/number_text.h"
+#include "skyview/core/error.h"
+#include "skyview/core/number_text.h"
 
 namespace skyview::detail {
 namespace {

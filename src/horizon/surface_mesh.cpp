@@ -1,4 +1,4 @@
-#include "skyview/surface_mesh.h"
+#include "skyview/horizon/surface_mesh.h"
 
 #include <cmath>
 #include <cstdint>

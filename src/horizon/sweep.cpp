@@ -48,9 +48,9 @@
 #include "earth_curvature.h"
 #include "fast_atan.h"
 #include "methods.h"
-#include "skyview/error.h"
-#include "skyview/large_pages.h"
-#include "skyview/number_text.h"
+#include "skyview/core/error.h"
+#include "skyview/core/large_pages.h"
+#include "skyview/core/number_text.h"
 
 namespace skyview::detail {
 namespace {

@@ -1,7 +1,7 @@
 // EPW reader, tolerant of the quirks real files have (see ../shared/data/weather/SOURCE.md):
 // "unknown" text fields, empty design-condition blocks, CRLF line ends, trailing commas, "-0.00",
 // missing-value codes, years that change from month to month, and the PVGIS UTC convention.
-#include "skyview/epw.h"
+#include "skyview/sky/epw.h"
 
 #include <charconv>
 #include <cmath>
@@ -10,8 +10,8 @@
 #include <sstream>
 #include <vector>
 
-#include "skyview/civil_time.h"
-#include "skyview/error.h"
+#include "skyview/solar/civil_time.h"
+#include "skyview/core/error.h"
 
 namespace skyview {
 namespace {

@@ -1,12 +1,12 @@
 // Geometry and cosine-weighted integration of the directional exposure map.
-#include "skyview/exposure_map.h"
+#include "skyview/sky/exposure_map.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
 
-#include "skyview/error.h"
+#include "skyview/core/error.h"
 
 namespace skyview {
 

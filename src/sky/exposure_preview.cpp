@@ -1,14 +1,14 @@
 // Exposure-map preview: two colour-mapped panels with scale bars, drawn with OpenCV (opencv_png.h
 // writes them).
-#include "skyview/exposure_preview.h"
+#include "skyview/sky/exposure_preview.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
-#include "../opencv_png.h"
-#include "skyview/raster_io.h"
+#include "preview/opencv_png.h"
+#include "skyview/raster/raster_io.h"
 
 namespace skyview {
 namespace {

@@ -1,12 +1,12 @@
 // Building and sampling the exposure map's mip-map pyramid.
-#include "skyview/exposure_pyramid.h"
+#include "skyview/sky/exposure_pyramid.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
 
-#include "skyview/error.h"
+#include "skyview/core/error.h"
 
 namespace skyview {
 

@@ -1,11 +1,11 @@
 // Turning a period or a weather file into exposure-map time steps.
-#include "skyview/exposure_steps.h"
+#include "skyview/sky/exposure_steps.h"
 
 #include <cmath>
 #include <numbers>
 
-#include "skyview/civil_time.h"
-#include "skyview/error.h"
+#include "skyview/solar/civil_time.h"
+#include "skyview/core/error.h"
 
 namespace skyview {
 namespace {

@@ -1,6 +1,6 @@
 // Hošek–Wilkie 2012 sky and 2013 solar-radiance function from the generated 1.4a tables, and
 // the broadband SkyModel that integrates the eleven bands (320..720 nm) by the trapezoid rule.
-#include "skyview/hosek_wilkie.h"
+#include "skyview/sky/hosek_wilkie.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "hosek_wilkie_tables.h"
-#include "skyview/error.h"
-#include "skyview/sky_models.h"
+#include "skyview/core/error.h"
+#include "skyview/sky/sky_models.h"
 
 namespace skyview::hosek_wilkie {
 namespace {

@@ -14,8 +14,8 @@
 #include <numbers>
 #include <string>
 
-#include "skyview/error.h"
-#include "skyview/exposure_map.h"
+#include "skyview/core/error.h"
+#include "skyview/sky/exposure_map.h"
 
 namespace skyview {
 namespace {

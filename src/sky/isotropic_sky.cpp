@@ -4,7 +4,7 @@
 #include <numbers>
 
 #include "measured_instant.h"
-#include "skyview/sky_models.h"
+#include "skyview/sky/sky_models.h"
 
 namespace skyview {
 namespace {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "skyview/error.h"
+#include "skyview/core/error.h"
 
 namespace skyview {
 

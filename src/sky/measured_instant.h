@@ -4,8 +4,8 @@
 // carrying the measured DNI. Shared by the Perez all-weather and isotropic skies.
 #include <memory>
 
-#include "skyview/perez_all_weather.h"
-#include "skyview/sky_model.h"
+#include "skyview/sky/perez_all_weather.h"
+#include "skyview/sky/sky_model.h"
 
 namespace skyview {
 

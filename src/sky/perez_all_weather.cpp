@@ -1,7 +1,7 @@
 // Perez 1993 all-weather sky driven by measured irradiance: the distribution from Table 1,
 // normalised each hour so that its horizontal integral equals the measured diffuse horizontal
 // irradiance; the sun carries the measured direct normal irradiance.
-#include "skyview/perez_all_weather.h"
+#include "skyview/sky/perez_all_weather.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "measured_instant.h"
-#include "skyview/error.h"
-#include "skyview/sky_models.h"
+#include "skyview/core/error.h"
+#include "skyview/sky/sky_models.h"
 
 namespace skyview::perez {
 namespace {

@@ -1,15 +1,15 @@
 // Preetham 1999 sky (Appendix A.2 of the paper, the "paper" variant of the coefficients in
 // ../shared/data/sky_coefficients/preetham1999_*.csv) and its broadband SkyModel.
-#include "skyview/preetham.h"
+#include "skyview/sky/preetham.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
 
-#include "skyview/error.h"
-#include "skyview/number_text.h"
-#include "skyview/sky_models.h"
+#include "skyview/core/error.h"
+#include "skyview/core/number_text.h"
+#include "skyview/sky/sky_models.h"
 
 namespace skyview::preetham {
 namespace {

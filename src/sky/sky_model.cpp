@@ -1,6 +1,6 @@
 // Shared parts of every sky: the generic tabulation, the uniform sun disc and the
 // horizontal-diffuse quadrature used to normalise and check the models.
-#include "skyview/sky_model.h"
+#include "skyview/sky/sky_model.h"
 
 #include <algorithm>
 #include <numbers>

@@ -1,6 +1,6 @@
 // Proleptic Gregorian calendar arithmetic over 400-year cycles (146097 days), so negative
 // years and years past 9999 need no special cases.
-#include "skyview/civil_time.h"
+#include "skyview/solar/civil_time.h"
 
 #include <cmath>
 #include <cstdio>

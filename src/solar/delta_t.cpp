@@ -1,7 +1,7 @@
 // Delta T policy: observed values where they exist, a constant for the near future, and the
 // Espenak & Meeus polynomials (F. Espenak, J. Meeus, "Five Millennium Canon of Solar Eclipses",
 // NASA/TP-2006-214141, section 2.6) for the distant past and future.
-#include "skyview/delta_t.h"
+#include "skyview/solar/delta_t.h"
 
 #include <algorithm>
 

@@ -1,6 +1,6 @@
 // Shadow angles of a vertical façade (Olgyay's shading-mask angles, as in the hybrid
 // shadow maps paper): the profile angle VSA is what an overhang's depth is designed against.
-#include "skyview/shadow_angles.h"
+#include "skyview/solar/shadow_angles.h"
 
 #include <cmath>
 #include <limits>

@@ -5,11 +5,11 @@
 #include <cstdio>
 #include <string>
 
-#include "skyview/civil_time.h"
-#include "skyview/delta_t.h"
-#include "skyview/error.h"
-#include "skyview/solar_position.h"
-#include "skyview/time_parse.h"
+#include "skyview/solar/civil_time.h"
+#include "skyview/solar/delta_t.h"
+#include "skyview/core/error.h"
+#include "skyview/solar/solar_position.h"
+#include "skyview/solar/time_parse.h"
 #include "spa_geocentric.h"
 #include "spa_tables.h"
 

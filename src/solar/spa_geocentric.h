@@ -1,7 +1,7 @@
 #pragma once
 // The site-independent half of the SPA (report steps 3.1-3.8), shared by the position and the
 // sunrise/transit/sunset computations.
-#include "skyview/solar_position.h"
+#include "skyview/solar/solar_position.h"
 
 namespace skyview::spa {
 

@@ -2,7 +2,7 @@
 // deliberate differences: the right-ascension differences are unwrapped across 0/360 deg
 // (the report's "limit to 0..1" misreads them near the March equinox), and by default the
 // transit is the one nearest local noon instead of the first in the UT day.
-#include "skyview/sun_events.h"
+#include "skyview/solar/sun_events.h"
 
 #include <cmath>
 

@@ -1,7 +1,7 @@
 // ISO 8601 reading for the solar commands: the date, the time of day, then a UTC offset or
 // an IANA zone name. Hand-written because years -2000..6000 and zone names after a space are
 // outside what std::get_time or strptime read.
-#include "skyview/time_parse.h"
+#include "skyview/solar/time_parse.h"
 
 #include <cctype>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "skyview/error.h"
+#include "skyview/core/error.h"
 
 namespace skyview {
 

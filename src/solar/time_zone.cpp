@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "skyview/error.h"
-#include "skyview/time_parse.h"
+#include "skyview/core/error.h"
+#include "skyview/solar/time_parse.h"
 
 namespace skyview {
 

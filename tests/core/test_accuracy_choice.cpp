@@ -1,8 +1,8 @@
 // --max-error: the cheapest calibrated configuration whose worst p99 svf error is within the request.
 #include <cmath>
 
-#include "skyview/accuracy_choice.h"
-#include "skyview/error.h"
+#include "skyview/sky_view/accuracy_choice.h"
+#include "skyview/core/error.h"
 #include "test_support.h"
 
 using namespace skyview;

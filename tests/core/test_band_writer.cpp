@@ -8,7 +8,7 @@
 #include <iterator>
 #include <limits>
 
-#include "skyview/error.h"
+#include "skyview/core/error.h"
 #include "test_support.h"
 
 using namespace skyview;

@@ -13,9 +13,9 @@
 #include <gdal_priv.h>
 
 #include "cli_run.h"
-#include "skyview/error_stats.h"
-#include "skyview/las_file.h"
-#include "skyview/svf_check.h"
+#include "skyview/sky_view/error_stats.h"
+#include "skyview/dsm/las_file.h"
+#include "skyview/sky_view/svf_check.h"
 #include "test_support.h"
 
 using namespace skyview;
@@ -241,7 +241,7 @@ TEST_F(CliErrors, DsmSaysWhichReturnsWereGround) {
   EXPECT_EQ(ds->GetMetadataItem("FOOTPRINTS_BURNED"), nullptr);
 }
 
-// PCL sits in a module loaded on first use (src/pointcloud/pcl_module.h): a run that needs no PCL
+// PCL sits in a module loaded on first use (src/dsm/pcl_module.h): a run that needs no PCL
 // works without it; one that does (a PLY cloud, --denoise) gets one line saying what is missing,
 // and writes nothing. The module is found beside the executable, or only in SKYVIEW_MODULE_DIR
 // when that is set; a file there that is not a module is reported, not skipped.

@@ -4,8 +4,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "skyview/error_stats.h"
-#include "skyview/method_benchmark.h"
+#include "skyview/sky_view/error_stats.h"
+#include "skyview/benchmark/method_benchmark.h"
 #include "test_support.h"
 
 using namespace skyview;

@@ -6,7 +6,7 @@
 #include <chrono>
 #include <thread>
 
-#include "skyview/error.h"
+#include "skyview/core/error.h"
 #include "test_support.h"
 
 using namespace skyview;

@@ -6,7 +6,7 @@
 #include <limits>
 #include <random>
 
-#include "skyview/error.h"
+#include "skyview/core/error.h"
 #include "test_support.h"
 
 using namespace skyview;

@@ -1,6 +1,6 @@
 // The unit of a raster's heights: read from the band or the vertical CRS, assumed to be the metre
 // only where the CRS is in metres or degrees, refused otherwise (height_unit.h).
-#include "skyview/height_unit.h"
+#include "skyview/raster/height_unit.h"
 
 #include <gdal_priv.h>
 #include <gtest/gtest.h>
@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "cli_run.h"
-#include "skyview/error.h"
-#include "skyview/raster_io.h"
+#include "skyview/core/error.h"
+#include "skyview/raster/raster_io.h"
 #include "temp_dir.h"
 #include "test_support.h"
 

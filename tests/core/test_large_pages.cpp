@@ -7,7 +7,7 @@
 #include <numeric>
 #include <vector>
 
-#include "skyview/large_pages.h"
+#include "skyview/core/large_pages.h"
 
 using namespace skyview;
 

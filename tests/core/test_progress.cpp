@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "skyview/progress.h"
+#include "skyview/core/progress.h"
 
 TEST(ProgressCounter, FractionIsClampedAndCounts) {
   skyview::ProgressCounter c;

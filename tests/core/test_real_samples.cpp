@@ -2,7 +2,7 @@
 // message where that folder is absent.
 #include <filesystem>
 
-#include "skyview/method_benchmark.h"
+#include "skyview/benchmark/method_benchmark.h"
 #include "test_support.h"
 
 using namespace skyview;

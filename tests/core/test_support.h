@@ -7,10 +7,10 @@
 #include <filesystem>
 #include <string>
 
-#include "skyview/horizon_engine.h"
-#include "skyview/raster_io.h"
-#include "skyview/sky_view.h"
-#include "skyview/synthetic.h"
+#include "skyview/horizon/horizon_engine.h"
+#include "skyview/raster/raster_io.h"
+#include "skyview/sky_view/sky_view.h"
+#include "skyview/synthetic/synthetic.h"
 #include "temp_dir.h"
 
 #include <cpl_conv.h>

@@ -3,7 +3,7 @@
 #include <map>
 #include <utility>
 
-#include "skyview/surface_mesh.h"
+#include "skyview/horizon/surface_mesh.h"
 #include "test_support.h"
 
 using namespace skyview;

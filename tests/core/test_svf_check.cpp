@@ -2,9 +2,9 @@
 #include <set>
 #include <utility>
 
-#include "skyview/accuracy_choice.h"
-#include "skyview/error.h"
-#include "skyview/svf_check.h"
+#include "skyview/sky_view/accuracy_choice.h"
+#include "skyview/core/error.h"
+#include "skyview/sky_view/svf_check.h"
 #include "test_support.h"
 
 using namespace skyview;

@@ -20,8 +20,8 @@
 #include <ogrsf_frmts.h>
 
 #include "cli_run.h"
-#include "skyview/las_file.h"
-#include "skyview/raster_io.h"
+#include "skyview/dsm/las_file.h"
+#include "skyview/raster/raster_io.h"
 #include "temp_dir.h"
 
 using namespace skyview;

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "skyview/error.h"
-#include "skyview/las_file.h"
+#include "skyview/core/error.h"
+#include "skyview/dsm/las_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {

@@ -7,9 +7,9 @@
 #include <fstream>
 
 #include "sky_test_support.h"
-#include "skyview/civil_time.h"
-#include "skyview/epw.h"
-#include "skyview/error.h"
+#include "skyview/solar/civil_time.h"
+#include "skyview/sky/epw.h"
+#include "skyview/core/error.h"
 #include "temp_dir.h"
 
 namespace skyview {

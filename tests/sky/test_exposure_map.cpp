@@ -7,13 +7,13 @@
 #include <numbers>
 
 #include "sky_test_support.h"
-#include "skyview/civil_time.h"
-#include "skyview/epw.h"
-#include "skyview/exposure_map.h"
-#include "skyview/exposure_pyramid.h"
-#include "skyview/exposure_steps.h"
-#include "skyview/sky_models.h"
-#include "skyview/time_parse.h"
+#include "skyview/solar/civil_time.h"
+#include "skyview/sky/epw.h"
+#include "skyview/sky/exposure_map.h"
+#include "skyview/sky/exposure_pyramid.h"
+#include "skyview/sky/exposure_steps.h"
+#include "skyview/sky/sky_models.h"
+#include "skyview/solar/time_parse.h"
 
 namespace skyview {
 namespace {

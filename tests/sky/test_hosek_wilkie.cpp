@@ -5,9 +5,9 @@
 #include <vector>
 
 #include "sky_test_support.h"
-#include "skyview/error.h"
-#include "skyview/hosek_wilkie.h"
-#include "skyview/sky_models.h"
+#include "skyview/core/error.h"
+#include "skyview/sky/hosek_wilkie.h"
+#include "skyview/sky/sky_models.h"
 
 namespace skyview {
 namespace {

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "sky_test_support.h"
-#include "skyview/perez_all_weather.h"
-#include "skyview/sky_models.h"
+#include "skyview/sky/perez_all_weather.h"
+#include "skyview/sky/sky_models.h"
 
 namespace skyview {
 namespace {

@@ -5,9 +5,9 @@
 #include <numbers>
 
 #include "sky_test_support.h"
-#include "skyview/error.h"
-#include "skyview/preetham.h"
-#include "skyview/sky_models.h"
+#include "skyview/core/error.h"
+#include "skyview/sky/preetham.h"
+#include "skyview/sky/sky_models.h"
 
 namespace skyview {
 namespace {

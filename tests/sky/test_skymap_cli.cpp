@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "sky_test_support.h"
-#include "skyview/raster_io.h"
+#include "skyview/raster/raster_io.h"
 #include "temp_dir.h"
 
 namespace {

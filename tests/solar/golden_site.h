@@ -1,6 +1,6 @@
 #pragma once
 // The SPA report's worked example site (Golden, Colorado; Reda & Andreas 2008, Table A5.1).
-#include "skyview/solar_position.h"
+#include "skyview/solar/solar_position.h"
 
 namespace skyview::test {
 

@@ -2,10 +2,10 @@
 // against the table and against pvlib's polynomial column in shared/data/spa.
 #include <gtest/gtest.h>
 
-#include "skyview/civil_time.h"
-#include "skyview/delta_t.h"
-#include "skyview/solar_position.h"
-#include "skyview/time_parse.h"
+#include "skyview/solar/civil_time.h"
+#include "skyview/solar/delta_t.h"
+#include "skyview/solar/solar_position.h"
+#include "skyview/solar/time_parse.h"
 
 using namespace skyview;
 

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "skyview/shadow_angles.h"
+#include "skyview/solar/shadow_angles.h"
 
 using namespace skyview;
 

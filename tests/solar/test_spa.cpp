@@ -5,10 +5,10 @@
 #include <cmath>
 
 #include "golden_site.h"
-#include "skyview/civil_time.h"
-#include "skyview/error.h"
-#include "skyview/solar_position.h"
-#include "skyview/time_parse.h"
+#include "skyview/solar/civil_time.h"
+#include "skyview/core/error.h"
+#include "skyview/solar/solar_position.h"
+#include "skyview/solar/time_parse.h"
 
 using namespace skyview;
 

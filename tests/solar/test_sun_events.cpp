@@ -6,9 +6,9 @@
 #include <string>
 
 #include "golden_site.h"
-#include "skyview/civil_time.h"
-#include "skyview/sun_events.h"
-#include "skyview/time_parse.h"
+#include "skyview/solar/civil_time.h"
+#include "skyview/solar/sun_events.h"
+#include "skyview/solar/time_parse.h"
 
 using namespace skyview;
 

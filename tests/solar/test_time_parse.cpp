@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "skyview/civil_time.h"
-#include "skyview/error.h"
-#include "skyview/time_parse.h"
+#include "skyview/solar/civil_time.h"
+#include "skyview/core/error.h"
+#include "skyview/solar/time_parse.h"
 
 using namespace skyview;
 
