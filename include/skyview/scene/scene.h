@@ -41,4 +41,15 @@ struct Scene {
   std::size_t triangle_count() const;
 };
 
+// How inputs are brought into one scene (the loaders, src/scene/, fill in the rest).
+struct SceneLoadOptions {
+  std::string s_srs;  // CRS of inputs that carry none (a mesh file); empty: refuse mixing with georeferenced ones
+  std::string t_srs;  // the scene's CRS; empty: the first georeferenced input's (must be projected, metres)
+};
+
+// Loads and merges DSM rasters, footprint layers, CityGML, CityJSON and mesh files (by content and
+// extension) into one scene. Throws skyview::Error (one line, naming the file) for inputs that
+// cannot be read at all or a scene with no triangles; skipped objects are counted in Scene::report.
+Scene load_scene(const std::vector<std::string>& inputs, const SceneLoadOptions& options = {});
+
 }  // namespace skyview
