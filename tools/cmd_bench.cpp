@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "command.h"
-#include "skyview/core/error.h"
 #include "skyview/benchmark/method_benchmark.h"
+#include "skyview/core/error.h"
 #include "skyview/raster/raster_io.h"
 
 namespace skyview::cli {

@@ -10,8 +10,8 @@
 
 #include "command.h"
 #include "skyview/core/error.h"
-#include "skyview/sky_view/error_stats.h"
 #include "skyview/raster/raster_io.h"
+#include "skyview/sky_view/error_stats.h"
 #include "skyview/sky_view/sky_view.h"
 
 namespace skyview::cli {
@@ -91,8 +91,8 @@ Runner setup(CLI::App& app) {
       "--max-slope leaves out walls and steep cells, where tools that tilt svf by their own slope estimate (SAGA) "
       "disagree by definition rather than by method.");
   return [o] {
-    if (o->max_slope >= 0.0 && o->dem.empty()) throw Error("--max-slope needs --dem, the elevation raster");
-    if (!o->dem.empty() && o->max_slope < 0.0) throw Error("--dem is only read for --max-slope");
+    if (o->max_slope >= 0.0 && o->dem.empty()) throw UsageError("--max-slope needs --dem, the elevation raster");
+    if (!o->dem.empty() && o->max_slope < 0.0) throw UsageError("--dem is only read for --max-slope");
     const bool json_file = !o->json.empty() && o->json != "-";
     if (json_file) {
       check_outputs_apart({o->json}, {o->value, o->reference, o->dem});

@@ -4,10 +4,10 @@
 #include <sstream>
 
 #include "command.h"
-#include "skyview/dsm/dsm_builder.h"
 #include "skyview/core/error.h"
-#include "skyview/raster/raster_io.h"
 #include "skyview/core/version.h"
+#include "skyview/dsm/dsm_builder.h"
+#include "skyview/raster/raster_io.h"
 
 namespace skyview::cli {
 namespace {
@@ -87,6 +87,7 @@ Runner setup(CLI::App& app) {
       "DEM, --dtm and footprint heights above the terrain use the clouds' ground returns (class 2, else the "
       "morphological filter), holes filled.");
   return [o, &app] {
+    const RunSummary summary("dsm");
     std::vector<std::string> inputs = o->dsm.dems;
     inputs.insert(inputs.end(), o->dsm.points.begin(), o->dsm.points.end());
     inputs.push_back(o->dsm.footprints);
@@ -101,7 +102,7 @@ Runner setup(CLI::App& app) {
     if (!o->te.empty()) o->dsm.te = std::array<double, 4>{o->te[0], o->te[1], o->te[2], o->te[3]};
     // LAS classes are 0..255; "1,,2", "2x" and an empty list are typing errors, not filters.
     if (app.count("--classes") > 0 && o->classes.empty())
-      throw Error("--classes is empty: give classes, or leave it out");
+      throw UsageError("--classes is empty: give classes, or leave it out");
     std::stringstream in(o->classes);
     for (std::string item; std::getline(in, item, ',');) {
       std::size_t used = 0;
@@ -111,8 +112,9 @@ Runner setup(CLI::App& app) {
       } catch (const std::exception&) {
         used = 0;
       }
-      if (used == 0 || used != item.size()) throw Error("--classes takes comma-separated integers, not '" + item + "'");
-      if (c < 0 || c > 255) throw Error("--classes: class " + item + " is outside the LAS classes 0 to 255");
+      if (used == 0 || used != item.size())
+        throw UsageError("--classes takes comma-separated integers, not '" + item + "'");
+      if (c < 0 || c > 255) throw UsageError("--classes: class " + item + " is outside the LAS classes 0 to 255");
       o->dsm.classes.push_back(c);
     }
     const DsmResult r = build_dsm(o->dsm);
@@ -160,16 +162,17 @@ Runner setup(CLI::App& app) {
       write_bands(o->dtm, r.dtm.width(), r.dtm.height(), r.georef, {{"terrain_height", "metre", r.dtm.data(), {}}},
                   dtm);
     }
-    if (!o->out.quiet) {
-      std::fprintf(stderr,
-                   "%dx%d cells; %llu of %llu points used (%llu removed as noise); %d footprints burned, %d from the "
-                   "cloud, %d repaired, "
-                   "%d skipped; %lld cells filled\n",
-                   r.dsm.width(), r.dsm.height(), static_cast<unsigned long long>(rep.points_used),
-                   static_cast<unsigned long long>(rep.points_read),
-                   static_cast<unsigned long long>(rep.points_removed_as_noise), rep.footprints_burned,
-                   rep.footprints_from_cloud, rep.footprints_repaired, rep.footprints_skipped,
-                   static_cast<long long>(rep.cells_filled));
+    {
+      char what[512];
+      std::snprintf(what, sizeof what,
+                    "%dx%d cells; %llu of %llu points used (%llu removed as noise); %d footprints burned, %d from the "
+                    "cloud, %d repaired, %d skipped; %lld cells filled",
+                    r.dsm.width(), r.dsm.height(), static_cast<unsigned long long>(rep.points_used),
+                    static_cast<unsigned long long>(rep.points_read),
+                    static_cast<unsigned long long>(rep.points_removed_as_noise), rep.footprints_burned,
+                    rep.footprints_from_cloud, rep.footprints_repaired, rep.footprints_skipped,
+                    static_cast<long long>(rep.cells_filled));
+      summary.print(what, o->out.quiet);
     }
     // A sparse cloud on the default 1-unit grid (106 returns over 3249 x 4386 cells of a foot) writes
     // a raster of holes: say so and what to change.

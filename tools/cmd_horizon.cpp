@@ -17,6 +17,7 @@ Runner setup(CLI::App& app) {
       "SECTOR_ROTATION_DEG with --azimuth-origin grid; with --azimuths grid-lines on the grid's lines); each band's "
       "AZIMUTH_DEG says where and SECTOR_WIDTH_DEG how wide an angle it stands for.");
   return [o, &app] {
+    const RunSummary summary("horizon");
     refuse_unused(app, "--rays", false, "skyview svf (its Monte-Carlo svf bands)");
     ThreadLimit limit(o->out.threads);
     HorizonJobOptions opts = *o;
@@ -92,6 +93,10 @@ Runner setup(CLI::App& app) {
       }
     });
     out.finish();
+    summary.print(std::to_string(w) + "x" + std::to_string(h) + " cells, " + std::to_string(n) +
+                      " direction bands by " + std::string(job.engine->name()) + "; " + std::to_string(edge_cells) +
+                      " cells whose search leaves the raster",
+                  o->out.quiet);
     return 0;
   };
 }

@@ -9,17 +9,17 @@
 #include <optional>
 
 #include "command.h"
-#include "skyview/sky/epw.h"
 #include "skyview/core/error.h"
+#include "skyview/core/number_text.h"
+#include "skyview/core/version.h"
+#include "skyview/raster/raster_io.h"
+#include "skyview/sky/epw.h"
 #include "skyview/sky/exposure_map.h"
 #include "skyview/sky/exposure_preview.h"
 #include "skyview/sky/exposure_steps.h"
-#include "skyview/core/number_text.h"
-#include "skyview/raster/raster_io.h"
 #include "skyview/sky/sky_model.h"
 #include "skyview/sky/sky_models.h"
 #include "skyview/solar/time_parse.h"
-#include "skyview/core/version.h"
 
 namespace skyview::cli {
 namespace {
@@ -46,17 +46,17 @@ std::unique_ptr<SkyModel> make_sky(const SkymapOptions& o) {
     if (!o.epw.empty()) return make_isotropic_sky();
     return make_isotropic_sky(std::shared_ptr<const SkyModel>(make_preetham_sky(o.turbidity, o.efficacy)));
   }
-  throw Error("--sky must be preetham, hosek, perez-epw or isotropic (got '" + o.sky + "')");
+  throw UsageError("--sky must be preetham, hosek, perez-epw or isotropic (got '" + o.sky + "')");
 }
 
 int run(const SkymapOptions& o) {
   const auto started = std::chrono::steady_clock::now();
   const bool measured = o.sky == "perez-epw" || (o.sky == "isotropic" && !o.epw.empty());
-  if (o.sky == "perez-epw" && o.epw.empty()) throw Error("--sky perez-epw needs --epw FILE");
-  if (!o.epw.empty() && !measured) throw Error("--epw applies only to --sky perez-epw or isotropic");
-  if (o.size < 8 || o.size > 8192) throw Error("--size must be within 8 .. 8192");
-  if (o.from.empty() != o.to.empty()) throw Error("give both --from and --to, or neither");
-  if (!measured && o.from.empty()) throw Error("--from and --to are required for --sky " + o.sky);
+  if (o.sky == "perez-epw" && o.epw.empty()) throw UsageError("--sky perez-epw needs --epw FILE");
+  if (!o.epw.empty() && !measured) throw UsageError("--epw applies only to --sky perez-epw or isotropic");
+  if (o.size < 8 || o.size > 8192) throw UsageError("--size must be within 8 .. 8192");
+  if (o.from.empty() != o.to.empty()) throw UsageError("give both --from and --to, or neither");
+  if (!measured && o.from.empty()) throw UsageError("--from and --to are required for --sky " + o.sky);
   const bool analytic_sun = o.sky == "preetham" || (o.sky == "isotropic" && !measured);
   refuse_unused(*o.app, "--step", !measured, "analytic skies (an EPW gives one step per hourly record)");
   refuse_unused(*o.app, "--turbidity", analytic_sun || o.sky == "hosek",
@@ -92,13 +92,13 @@ int run(const SkymapOptions& o) {
                  o.epw.c_str(), weather->records.size(), weather->declared_hours);
   }
   Site site;
-  if (!o.lat && !weather) throw Error("--lat and --lon are required");
+  if (!o.lat && !weather) throw UsageError("--lat and --lon are required");
   site.latitude_deg = o.lat ? *o.lat : weather->location.latitude_deg;
   site.longitude_deg = o.lon ? *o.lon : weather->location.longitude_deg;
   site.elevation_m = o.elevation ? *o.elevation : (weather ? weather->location.elevation_m : 0.0);
-  if (!(std::abs(site.latitude_deg) <= 90.0)) throw Error("--lat must be within -90 .. 90");
-  if (!(std::abs(site.longitude_deg) <= 180.0)) throw Error("--lon must be within -180 .. 180");
-  if (o.lat.has_value() != o.lon.has_value()) throw Error("give both --lat and --lon, or neither (with --epw)");
+  if (!(std::abs(site.latitude_deg) <= 90.0)) throw UsageError("--lat must be within -90 .. 90");
+  if (!(std::abs(site.longitude_deg) <= 180.0)) throw UsageError("--lon must be within -180 .. 180");
+  if (o.lat.has_value() != o.lon.has_value()) throw UsageError("give both --lat and --lon, or neither (with --epw)");
   if (weather && o.lat && (*o.lat != weather->location.latitude_deg || *o.lon != weather->location.longitude_deg)) {
     std::fprintf(stderr, "Warning: the sun is placed for --lat %s --lon %s, not for the EPW's site (%s, %s)\n",
                  number_text(*o.lat).c_str(), number_text(*o.lon).c_str(),
@@ -123,11 +123,11 @@ int run(const SkymapOptions& o) {
     meta["EPW_MISSING_SOLAR_VALUES"] = std::to_string(weather->missing_solar_values);
     meta["EPW_STEPS"] = "one hour per record at its irradiance instant (--step is not used)";
   } else {
-    const double step_s = parse_duration_s(o.step);
+    const double step_s = parse_duration_option(o.step);
     // One step would stand for the whole period, its sun at the first instant (a day at 1d read 30.7
     // kWh/m2 where 1-minute steps give 11.0).
     if (period && step_s >= period->to_utc - period->from_utc) {
-      throw Error("--step " + o.step + " is not shorter than the period from --from to --to; give a shorter step");
+      throw UsageError("--step " + o.step + " is not shorter than the period from --from to --to; give a shorter step");
     }
     steps = regular_steps(site, period->from_utc, period->to_utc, step_s);
     meta["STEP"] = o.step;

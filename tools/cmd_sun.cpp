@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "command.h"
-#include "skyview/solar/civil_time.h"
 #include "skyview/core/error.h"
+#include "skyview/solar/civil_time.h"
 #include "skyview/solar/shadow_angles.h"
 #include "skyview/solar/solar_position.h"
 #include "skyview/solar/sun_events.h"
@@ -40,7 +40,7 @@ double number(const std::string& option, const std::string& text) {
     used = 0;
   }
   if (used == 0 || used != text.size() || !std::isfinite(v)) {
-    throw Error(option + ": '" + text + "' is not a number");
+    throw UsageError(option + ": '" + text + "' is not a number");
   }
   return v;
 }
@@ -73,15 +73,16 @@ struct Period {
 Period read_period(const Options& o) {
   if (!o.tz.empty()) check_time_zone(o.tz);
   const bool single = !o.time.empty();
-  if (single == (!o.from.empty() || !o.to.empty())) throw Error("give either --time T or --from T1 --to T2");
-  if (!single && (o.from.empty() || o.to.empty())) throw Error("--from and --to go together");
+  if (single == (!o.from.empty() || !o.to.empty())) throw UsageError("give either --time T or --from T1 --to T2");
+  if (!single && (o.from.empty() || o.to.empty())) throw UsageError("--from and --to go together");
   const ParsedTime a = parse_time_option(single ? o.time : o.from, o.tz);
   const ParsedTime b = single || o.to == o.from ? a : parse_time_option(o.to, o.tz);
   // Events come a day at a time: --step is refused with them (and with --time), not read.
   const bool stepped = !single && !o.events;
-  Period p{a.unix_utc, b.unix_utc, stepped ? parse_duration_s(o.step) : 86400.0, {}};
-  if (p.last < p.first) throw Error("--to is before --from");
-  if (stepped && (p.last - p.first) / p.step > kMaxRows) throw Error("--step " + o.step + " gives more than 1e7 rows");
+  Period p{a.unix_utc, b.unix_utc, stepped ? parse_duration_option(o.step) : 86400.0, {}};
+  if (p.last < p.first) throw UsageError("--to is before --from");
+  if (stepped && (p.last - p.first) / p.step > kMaxRows)
+    throw UsageError("--step " + o.step + " gives more than 1e7 rows");
   p.clock.zone = o.tz.empty() ? a.zone : o.tz;
   p.clock.fixed_offset_s = a.utc_offset_s;
   return p;
@@ -89,15 +90,17 @@ Period read_period(const Options& o) {
 
 Site read_site(const Options& o) {
   Site s;
-  if (o.lat.empty() || o.lon.empty()) throw Error("--lat and --lon are required");
+  if (o.lat.empty() || o.lon.empty()) throw UsageError("--lat and --lon are required");
   s.latitude_deg = number("--lat", o.lat);
   s.longitude_deg = number("--lon", o.lon);
+  if (!(std::abs(s.latitude_deg) <= 90.0)) throw UsageError("--lat " + o.lat + " is outside -90..90 degrees");
+  if (!(std::abs(s.longitude_deg) <= 180.0)) throw UsageError("--lon " + o.lon + " is outside -180..180 degrees");
   s.elevation_m = number("--elevation", o.elevation);
   s.pressure_mbar = number("--pressure", o.pressure);
   s.temperature_c = number("--temperature", o.temperature);
   if (auto dt = optional_number("--delta-t", o.delta_t)) {
     // Below -1e8 the library reads "automatic": a value the user gives is checked, not reinterpreted.
-    if (!(std::abs(*dt) <= 1e6)) throw Error("--delta-t " + o.delta_t + " s is outside -1e6..1e6 s");
+    if (!(std::abs(*dt) <= 1e6)) throw UsageError("--delta-t " + o.delta_t + " s is outside -1e6..1e6 s");
     s.delta_t_s = *dt;
   }
   s.delta_ut1_s = number("--delta-ut1", o.delta_ut1);
@@ -108,9 +111,9 @@ Site read_site(const Options& o) {
 int print_positions(const Options& o, const Site& site, const Period& p) {
   const std::optional<double> facade = optional_number("--facade-azimuth", o.facade_azimuth);
   const std::optional<double> slope = optional_number("--slope", o.slope);
-  if (slope && !(*slope >= 0.0 && *slope <= 180.0)) throw Error("--slope must be 0 to 180 degrees");
+  if (slope && !(*slope >= 0.0 && *slope <= 180.0)) throw UsageError("--slope must be 0 to 180 degrees");
   if (!slope && !o.surface_azimuth.empty())
-    throw Error("--surface-azimuth is the azimuth of --slope's surface: give --slope");
+    throw UsageError("--surface-azimuth is the azimuth of --slope's surface: give --slope");
   const double surface_azimuth = optional_number("--surface-azimuth", o.surface_azimuth).value_or(180.0);
   if (o.csv) {
     std::printf(
@@ -181,13 +184,13 @@ const char* kind_name(DayKind k) {
 }
 
 int print_events(const Options& o, const Site& site, const Period& p) {
-  if (o.convention != "local" && o.convention != "spa") throw Error("--convention must be local or spa");
+  if (o.convention != "local" && o.convention != "spa") throw UsageError("--convention must be local or spa");
   const SunEventDay convention = o.convention == "spa" ? SunEventDay::spa_utc_day : SunEventDay::local_day;
   const auto local_day = [&](double t) {
     return static_cast<std::int64_t>(std::floor((t + p.clock.offset_at(t)) / 86400.0));
   };
   const std::int64_t first = local_day(p.first), last = local_day(p.last);
-  if (last - first > 400000) throw Error("--events covers more than 400000 days");
+  if (last - first > 400000) throw UsageError("--events covers more than 400000 days");
   // The first and last days first: their events reach half a day beyond them, and a date outside
   // the SPA's years must fail before a line is printed.
   for (const auto& [day, t] : {std::pair{first, p.first}, std::pair{last, p.last}}) {

@@ -15,6 +15,23 @@
 namespace skyview::cli {
 namespace {
 
+// "svf mean 0.812 (0.105 to 1.000)" over the band's valid cells.
+std::string band_summary(const SvfBand& band) {
+  double sum = 0, lo = INFINITY, hi = -INFINITY;
+  std::size_t n = 0;
+  for (float v : band.values.values()) {
+    if (std::isnan(v)) continue;
+    sum += v;
+    lo = std::min(lo, static_cast<double>(v));
+    hi = std::max(hi, static_cast<double>(v));
+    ++n;
+  }
+  if (n == 0) return band.name + ": no valid cells";
+  char text[160];
+  std::snprintf(text, sizeof text, "%s mean %.3f (%.3f to %.3f)", band.name.c_str(), sum / n, lo, hi);
+  return text;
+}
+
 Runner setup(CLI::App& app) {
   auto o = std::make_shared<HorizonJobOptions>();
   auto preview = std::make_shared<std::string>();
@@ -47,6 +64,7 @@ Runner setup(CLI::App& app) {
       "sky_visibility (solid-angle fraction), openness_positive, openness_negative (degrees); raycast with --rays "
       "adds svf_montecarlo and svf_montecarlo_stderr.");
   return [o, preview, products, check_cells] {
+    const RunSummary summary("svf");
     SvfRequest request;
     request.products = *products;
     request.check_cells = *check_cells;
@@ -89,6 +107,11 @@ Runner setup(CLI::App& app) {
       if (spec.unit == "1") spec.range = std::make_pair(0.0, 1.0);
       write_raster_preview(*preview, result.bands.front().values, spec, o->out.overwrite);
     }
+    summary.print(std::to_string(w) + "x" + std::to_string(h) + " cells, " + std::to_string(bands.size()) +
+                      " bands by " + std::string(job.engine->name()) + " with " +
+                      std::to_string(job.engine->params().directions) + " directions; " +
+                      band_summary(result.bands.front()),
+                  o->out.quiet);
     return 0;
   };
 }

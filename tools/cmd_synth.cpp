@@ -1,10 +1,10 @@
 // skyview synth: writes the synthetic and analytic test rasters (sample_dems/ is made with it).
 #include "command.h"
 #include "skyview/core/error.h"
+#include "skyview/core/version.h"
 #include "skyview/raster/raster_io.h"
 #include "skyview/synthetic/synthetic.h"
 #include "skyview/synthetic/synthetic_district.h"
-#include "skyview/core/version.h"
 
 #include <cpl_conv.h>
 #include <ogr_spatialref.h>
@@ -66,18 +66,18 @@ Runner setup(CLI::App& app) {
     OGRSpatialReference srs;
     if (srs.SetFromUserInput(o->crs.c_str()) != OGRERR_NONE) throw Error("unknown CRS '" + o->crs + "'");
     if (!srs.IsProjected()) {
-      throw Error("--crs must be a projected CRS in metres ('" + o->crs + "' is " +
-                  (srs.IsGeographic() ? "geographic" : "not projected") + ")");
+      throw UsageError("--crs must be a projected CRS in metres ('" + o->crs + "' is " +
+                       (srs.IsGeographic() ? "geographic" : "not projected") + ")");
     }
     // --cell, --origin and the heights are metres: a CRS in feet would label them wrongly.
     const char* unit = nullptr;
     if (std::abs(srs.GetLinearUnits(&unit) - 1.0) > 1e-9) {
-      throw Error("--crs must be a projected CRS in metres ('" + o->crs + "' is in " + (unit ? unit : "unknown units") +
-                  ")");
+      throw UsageError("--crs must be a projected CRS in metres ('" + o->crs + "' is in " +
+                       (unit ? unit : "unknown units") + ")");
     }
     if (srs.IsVertical() && std::abs(srs.GetTargetLinearUnits("VERT_CS", &unit) - 1.0) > 1e-9) {
-      throw Error("--crs must have heights in metres ('" + o->crs + "' has heights in " +
-                  (unit ? unit : "unknown units") + ")");
+      throw UsageError("--crs must have heights in metres ('" + o->crs + "' has heights in " +
+                       (unit ? unit : "unknown units") + ")");
     }
     char* wkt = nullptr;
     srs.exportToWkt(&wkt);

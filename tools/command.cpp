@@ -10,7 +10,10 @@
 #include "skyview/core/error.h"
 #include "skyview/core/lowercase.h"
 
+#include <sys/resource.h>
 #include <tbb/global_control.h>
+
+#include <chrono>
 
 namespace skyview::cli {
 
@@ -54,7 +57,7 @@ void add_output_options(CLI::App& app, OutputOptions& o) {
 }
 
 void refuse_unused(const CLI::App& app, const std::string& option, bool used, const std::string& where) {
-  if (!used && app.count(option) > 0) throw Error(option + " applies only to " + where);
+  if (!used && app.count(option) > 0) throw UsageError(option + " applies only to " + where);
 }
 
 void require_extension(const std::string& path, const std::vector<std::string>& extensions, const std::string& what) {
@@ -62,12 +65,19 @@ void require_extension(const std::string& path, const std::vector<std::string>& 
   if (std::find(extensions.begin(), extensions.end(), ext) != extensions.end()) return;
   std::string list;
   for (const std::string& e : extensions) list += (list.empty() ? "" : ", ") + e;
-  throw Error(what + " '" + path + "' must end in " + (extensions.size() > 1 ? "one of " : "") + list +
-              " (the format it is written in)");
+  throw UsageError(what + " '" + path + "' must end in " + (extensions.size() > 1 ? "one of " : "") + list +
+                   " (the format it is written in)");
 }
 
 ParsedTime parse_time_option(const std::string& text, const std::string& zone) {
-  const ParsedTime t = parse_time(text, zone);
+  ParsedTime t;
+  try {
+    t = parse_time(text, zone);
+  } catch (const UsageError&) {
+    throw;
+  } catch (const Error& e) {  // a time that cannot be read is the option's value at fault
+    throw UsageError(e.what());
+  }
   if (t.ambiguous) {
     std::fprintf(stderr,
                  "Warning: '%s' occurs twice in %s (clocks set back); taken as the earlier, %s; give a UTC offset "
@@ -128,6 +138,40 @@ CLI::Validator number_above(double lo, double hi) {
   const std::string a = CLI::detail::to_string(lo), b = CLI::detail::to_string(hi);
   return number_check([lo, hi](double x) { return x > lo && x <= hi; },
                       "must be a number above " + a + " and at most " + b, "(" + a + " to " + b + "]");
+}
+
+namespace {
+
+double now_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+RunSummary::RunSummary(std::string command) : command_(std::move(command)), started_(now_seconds()) {}
+
+double RunSummary::seconds() const { return now_seconds() - started_; }
+
+void RunSummary::print(const std::string& what, bool quiet) const {
+  if (quiet) return;
+  std::fprintf(stderr, "skyview %s: %s; %.2f s, peak %.2f GB\n", command_.c_str(), what.c_str(), seconds(),
+               static_cast<double>(peak_memory_bytes()) / 1e9);
+}
+
+double parse_duration_option(const std::string& text) {
+  try {
+    return parse_duration_s(text);
+  } catch (const UsageError&) {
+    throw;
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+}
+
+std::size_t peak_memory_bytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<std::size_t>(usage.ru_maxrss) * 1024;  // kilobytes on Linux
 }
 
 }  // namespace skyview::cli

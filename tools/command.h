@@ -4,6 +4,7 @@
 // options to the CLI11 subcommand and returns the function that runs it after parsing.
 #include <CLI/CLI.hpp>
 
+#include <cstddef>
 #include <functional>
 #include <memory>
 #include <string>
@@ -51,6 +52,9 @@ CLI::Validator number_in(double lo, double hi);
 // A finite number in (lo, hi].
 CLI::Validator number_above(double lo, double hi);
 
+// Errors in options throw skyview::UsageError (exit 2, as CLI11's own), errors in the data or files
+// skyview::Error (exit 1): an option's message starts with its name.
+//
 // Throws when `option` was given on the command line but the run will not use it (`used` is
 // false): "OPTION applies only to WHERE". A batch job would otherwise get the answer to another
 // question than the one it asked, without a word.
@@ -62,7 +66,11 @@ void require_extension(const std::string& path, const std::vector<std::string>& 
 
 // parse_time, warning on stderr (even under -q) when a local time occurs twice and the earlier
 // instant is taken.
+// Throws UsageError for a time that cannot be read.
 ParsedTime parse_time_option(const std::string& text, const std::string& zone);
+
+// parse_duration_s ("30m", "1h"), throwing UsageError for a duration that cannot be read.
+double parse_duration_option(const std::string& text);
 
 // Limits oneTBB to `threads` workers while alive (0 = no limit).
 class ThreadLimit {
@@ -73,5 +81,23 @@ class ThreadLimit {
  private:
   std::shared_ptr<void> control_;
 };
+
+// The one line every command ends with on stderr (unless -q): "skyview CMD: WHAT; S s, peak M GB",
+// with the wall time since the summary was made and the process's peak resident memory.
+class RunSummary {
+ public:
+  explicit RunSummary(std::string command);
+  // Seconds since construction.
+  double seconds() const;
+  // Prints the line unless `quiet`.
+  void print(const std::string& what, bool quiet) const;
+
+ private:
+  std::string command_;
+  double started_;
+};
+
+// The process's peak resident memory so far, in bytes (getrusage).
+std::size_t peak_memory_bytes();
 
 }  // namespace skyview::cli

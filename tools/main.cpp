@@ -100,6 +100,9 @@ int main(int argc, char** argv) {
     if (!sub->parsed()) continue;
     try {
       return run();
+    } catch (const UsageError& e) {  // bad usage, as for the options CLI11 cannot parse
+      std::fprintf(stderr, "skyview %s: error: %s (see --help)\n", sub->get_name().c_str(), one_line(e.what()).c_str());
+      return 2;
     } catch (const Error& e) {
       std::fprintf(stderr, "skyview %s: error: %s\n", sub->get_name().c_str(), one_line(e.what()).c_str());
       return 1;

@@ -121,7 +121,7 @@ DsmResult build_dsm(const DsmOptions& o) {
     throw Error("nothing to build from: give --dem, --points or --footprints");
   }
   if (o.want_dtm && o.dems.empty() && o.points.empty()) {
-    throw Error("--dtm needs a terrain: give --dem, or --points with ground returns");
+    throw UsageError("--dtm needs a terrain: give --dem, or --points with ground returns");
   }
   const GridStatistic stat = parse_grid_statistic(o.stat);
   // Inputs and their CRSs.
@@ -237,7 +237,7 @@ DsmResult build_dsm(const DsmOptions& o) {
   if (o.te) {
     ext = {(*o.te)[0], (*o.te)[1], (*o.te)[2], (*o.te)[3]};
     if (!(ext.x1 > ext.x0 && ext.y1 > ext.y0))
-      throw Error("--te is xmin ymin xmax ymax, with xmin < xmax and ymin < ymax");
+      throw UsageError("--te is xmin ymin xmax ymax, with xmin < xmax and ymin < ymax");
     lattice = std::array<double, 2>{ext.x0, ext.y1};  // its corner is the grid's, as gdalwarp -te keeps it
   }
   // Clouds' returns lie in a closed box: a single return, or a row of them, still makes a grid

@@ -7,7 +7,7 @@
 namespace skyview {
 
 std::vector<char> statistical_inliers(const std::vector<XyzPoint>& points, int k, double sigma) {
-  if (k < 1) throw Error("--denoise-k must be at least 1");
+  if (k < 1) throw UsageError("--denoise-k must be at least 1");
   if (points.size() <= static_cast<std::size_t>(k)) return std::vector<char>(points.size(), 1);
   std::vector<char> keep;
   const std::string error = detail::pcl_module().statistical_inliers(points, k, sigma, keep);

@@ -11,7 +11,7 @@ GridStatistic parse_grid_statistic(const std::string& name) {
   if (name == "mean") return GridStatistic::mean;
   if (name == "min") return GridStatistic::min;
   if (name == "idw") return GridStatistic::idw;
-  throw Error("--stat must be max, mean, min or idw, not '" + name + "'");
+  throw UsageError("--stat must be max, mean, min or idw, not '" + name + "'");
 }
 
 PointGridder::PointGridder(const GridLattice& lattice, GridStatistic stat, double idw_radius, double idw_power)

@@ -94,7 +94,7 @@ DirectionSet DirectionSet::uniform(int n) {
 
 void check_grid_lines_count(int directions) {
   if (directions != 4 && directions != 8 && directions != 16)
-    throw Error("--azimuths grid-lines needs 4, 8 or 16 directions (got " + std::to_string(directions) + ")");
+    throw UsageError("--azimuths grid-lines needs 4, 8 or 16 directions (got " + std::to_string(directions) + ")");
 }
 
 DirectionSet DirectionSet::grid_lines(int n, const Jacobian& j) {

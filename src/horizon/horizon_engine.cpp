@@ -110,12 +110,12 @@ void compute_by_row_blocks(const HorizonEngine& engine, const Terrain& terrain, 
 std::vector<std::string> horizon_method_names() { return {"sampled", "march", "sweep", "raycast"}; }
 
 std::unique_ptr<HorizonEngine> make_horizon_engine(std::string_view method, const HorizonParams& params) {
-  if (params.directions < 1 || params.directions > 4096) throw Error("--directions must be between 1 and 4096");
-  if (!(params.radius >= 0.0) || std::isinf(params.radius)) throw Error("--radius must be a positive number of metres");
+  if (params.directions < 1 || params.directions > 4096) throw UsageError("--directions must be between 1 and 4096");
+  if (!(params.radius >= 0.0) || std::isinf(params.radius)) throw UsageError("--radius must be a positive number of metres");
   if (params.spacing == AzimuthSpacing::grid_lines) {
     check_grid_lines_count(params.directions);
     if (method == "sampled")
-      throw Error("--azimuths grid-lines needs fixed directions: the sampled method turns each cell's set at random");
+      throw UsageError("--azimuths grid-lines needs fixed directions: the sampled method turns each cell's set at random");
   }
   if (method == "sampled") return detail::make_sampled_engine(params);
   if (method == "march") return detail::make_march_engine(params);

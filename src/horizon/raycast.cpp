@@ -285,8 +285,8 @@ class TerrainMesh {
 class RaycastEngine final : public HorizonEngine {
  public:
   explicit RaycastEngine(const HorizonParams& p) : p_(p) {
-    if (p_.rays < 0 || p_.rays > 1 << 20) throw Error("--rays must be between 0 and 1048576");
-    if (p_.curvature == "on") throw Error("--method raycast models no Earth curvature; use --curvature off");
+    if (p_.rays < 0 || p_.rays > 1 << 20) throw UsageError("--rays must be between 0 and 1048576");
+    if (p_.curvature == "on") throw UsageError("--method raycast models no Earth curvature; use --curvature off");
   }
   std::string_view name() const override { return "raycast"; }
   std::string_view citation() const override {

@@ -34,7 +34,7 @@ class SampledEngine final : public HorizonEngine {
   explicit SampledEngine(const HorizonParams& p) : p_(p) {
     if (p_.radius == 0.0) p_.radius = 500.0;
     if (p_.samples == 0) p_.samples = 16;
-    if (p_.samples < 1 || p_.samples > 100000) throw Error("--samples must be between 1 and 100000");
+    if (p_.samples < 1 || p_.samples > 100000) throw UsageError("--samples must be between 1 and 100000");
     for (int j = 0; j < p_.samples; ++j) {
       const double f = (j + 1.0) / p_.samples;
       samples_.distance.push_back(p_.radius * f * f);

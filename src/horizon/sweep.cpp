@@ -55,9 +55,9 @@ class SweepEngine final : public HorizonEngine {
  public:
   explicit SweepEngine(const HorizonParams& p) : p_(p) {
     if (p_.samples == 0) p_.samples = 64;
-    if (p_.samples < 1 || p_.samples > 4096) throw Error("--samples (exact near steps) must be 1 to 4096 for sweep");
-    if (p_.radius < 0.0 || !std::isfinite(p_.radius)) throw Error("--radius must be positive (or 0 for unlimited)");
-    if (p_.far_lines != 1 && p_.far_lines != 2) throw Error("--far-lines must be 1 or 2 for sweep");
+    if (p_.samples < 1 || p_.samples > 4096) throw UsageError("--samples (exact near steps) must be 1 to 4096 for sweep");
+    if (p_.radius < 0.0 || !std::isfinite(p_.radius)) throw UsageError("--radius must be positive (or 0 for unlimited)");
+    if (p_.far_lines != 1 && p_.far_lines != 2) throw UsageError("--far-lines must be 1 or 2 for sweep");
   }
   std::string_view name() const override { return "sweep"; }
   std::string_view citation() const override {

@@ -83,7 +83,7 @@ bool vertical_unit(const OGRSpatialReference& crs, HeightUnit& unit) {
 }
 
 void check_given(double given) {
-  if (!(given >= 0.0) || !std::isfinite(given)) throw Error("--z-scale must be a positive number");
+  if (!(given >= 0.0) || !std::isfinite(given)) throw UsageError("--z-scale must be a positive number");
 }
 
 }  // namespace

@@ -279,7 +279,7 @@ std::string crs_from_user_input(const std::string& text, const std::string& opti
   OGRSpatialReference srs;
   const CPLErrorHandlerPusher quiet(CPLQuietErrorHandler);
   if (srs.SetFromUserInput(text.c_str()) != OGRERR_NONE)
-    throw Error(option + " '" + text + "' is not a CRS GDAL knows (EPSG:25833, a WKT or PROJ string)");
+    throw UsageError(option + " '" + text + "' is not a CRS GDAL knows (EPSG:25833, a WKT or PROJ string)");
   char* wkt = nullptr;
   const char* opts[] = {"FORMAT=WKT2_2018", nullptr};
   srs.exportToWkt(&wkt, opts);

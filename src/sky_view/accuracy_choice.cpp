@@ -67,7 +67,7 @@ Pick pick(double target, Admits admits) {
 }  // namespace
 
 AccuracyChoice choose_for_max_error(double max_error, const HorizonParams& base) {
-  if (!(max_error > 0.0) || max_error > 1.0) throw Error("--max-error must be above 0 and at most 1");
+  if (!(max_error > 0.0) || max_error > 1.0) throw UsageError("--max-error must be above 0 and at most 1");
   const auto [best, most_accurate] = pick(max_error, [](const CalibrationEntry&) { return true; });
   if (!best) {
     char msg[256];

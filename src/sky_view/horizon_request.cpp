@@ -13,7 +13,7 @@ namespace {
 // sweep, or for --max-error and --directions 64 together, would otherwise get an answer to
 // another question than it asked, without a word.
 void refuse_unused(const HorizonRequest& r, const std::string& option, bool used, const std::string& where) {
-  if (!used && r.was_given(option)) throw Error(option + " applies only to " + where);
+  if (!used && r.was_given(option)) throw UsageError(option + " applies only to " + where);
 }
 
 // `method` is the one the run uses (--max-error's choice, if given).
@@ -26,7 +26,7 @@ void check_options_apply(const HorizonRequest& o, const std::string& method) {
     }
   }
   if (o.azimuths == "grid-lines" && o.was_given("--azimuth-origin") && o.azimuth_origin != "grid")
-    throw Error("--azimuths grid-lines starts on grid north: leave out --azimuth-origin " + o.azimuth_origin);
+    throw UsageError("--azimuths grid-lines starts on grid north: leave out --azimuth-origin " + o.azimuth_origin);
   const std::string used_by = " (this run uses " + method +
                               (o.params.radius > 0.0 ? " with --radius " + number_text(o.params.radius) : "") + ")";
   refuse_unused(o, "--rays", method == "raycast", "--method raycast" + used_by);
@@ -47,7 +47,7 @@ void check_options_apply(const HorizonRequest& o, const std::string& method) {
 
 void check_edge_mode(const HorizonSetup& s) {
   if (s.edge == EdgeMode::nodata && std::isinf(s.engine->radius())) {
-    throw Error(std::string("--edge nodata blanks the cells whose search reaches the raster's edge, which with an ") +
+    throw UsageError(std::string("--edge nodata blanks the cells whose search reaches the raster's edge, which with an ") +
                 (s.choice ? "unlimited radius (what --max-error chose: it sets --method, --directions, --samples, "
                             "--far-lines and --radius) is every cell; choose the method and --radius yourself"
                           : "unlimited radius is every cell; give --radius"));
@@ -66,7 +66,7 @@ void check_edge_leaves_cells(const HorizonSetup& s, const Terrain& t, double rad
       if (t.valid(c, r) && !search_circle_leaves_raster(t, c, r, radius)) return;
     }
   }
-  throw Error("--edge nodata blanks the cells whose search reaches the raster's edge, which with --radius " +
+  throw UsageError("--edge nodata blanks the cells whose search reaches the raster's edge, which with --radius " +
               number_text(radius_asked) +
               " is every cell of this raster; give a smaller --radius or leave --edge open");
 }
@@ -78,7 +78,7 @@ void check_radius_reaches_a_neighbour(const HorizonSetup& s, const Terrain& t, d
   if (!std::isfinite(radius)) return;
   const double cell = raster_centre_jacobian(t).min_cell_size();
   if (radius >= cell) return;
-  throw Error("--radius " + number_text(radius_asked) + " m reaches no neighbouring cell (the shorter cell side is " +
+  throw UsageError("--radius " + number_text(radius_asked) + " m reaches no neighbouring cell (the shorter cell side is " +
               number_text(cell) + " m), so every horizon would be open; the radius is in metres, not cells");
 }
 
@@ -133,7 +133,7 @@ std::string describe_choice(const AccuracyChoice& c) {
 }
 
 HorizonSetup plan_horizon(const HorizonRequest& o) {
-  if (o.edge != "open" && o.edge != "nodata") throw Error("--edge must be open or nodata, not '" + o.edge + "'");
+  if (o.edge != "open" && o.edge != "nodata") throw UsageError("--edge must be open or nodata, not '" + o.edge + "'");
   HorizonSetup s;
   s.edge = o.edge == "nodata" ? EdgeMode::nodata : EdgeMode::open;
   std::string method = o.method;

@@ -13,8 +13,8 @@
 #include <gdal_priv.h>
 
 #include "cli_run.h"
-#include "skyview/sky_view/error_stats.h"
 #include "skyview/dsm/las_file.h"
+#include "skyview/sky_view/error_stats.h"
 #include "skyview/sky_view/svf_check.h"
 #include "test_support.h"
 
@@ -108,7 +108,7 @@ TEST_F(CliErrors, AStoppedRunLeavesNoTemporaryFile) {
 // A radius shorter than a cell reaches no grid line: every horizon would be open.
 TEST_F(CliErrors, ARadiusShorterThanACellIsRefused) {
   expect_one_line_error(run_skyview("svf " + good + " " + dir + "/r.tif --method march --radius 0.5", dir),
-                        "reaches no neighbouring cell");
+                        "reaches no neighbouring cell", 2);
   EXPECT_EQ(run_skyview("svf " + good + " " + dir + "/r1.tif --method march --radius 1", dir).exit_code, 0);
 }
 
@@ -126,9 +126,9 @@ TEST_F(CliErrors, HorizonOutputsCountTheirEdgeCells) {
 // A bad option is said before an existing output: the user fixing the output would meet it next.
 TEST_F(CliErrors, OptionErrorsComeBeforeAnExistingOutput) {
   std::ofstream(dir + "/there.tif") << "kept";
-  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/there.tif --samples 99999", dir), "--samples");
+  expect_one_line_error(run_skyview("svf " + good + " " + dir + "/there.tif --samples 99999", dir), "--samples", 2);
   expect_one_line_error(run_skyview("horizon " + good + " " + dir + "/there.tif --far-lines 2 --method march", dir),
-                        "--far-lines applies only");
+                        "--far-lines applies only", 2);
   expect_one_line_error(run_skyview("svf " + good + " " + dir + "/there.tif", dir), "exists; use --overwrite");
   std::ifstream kept(dir + "/there.tif");
   EXPECT_EQ(std::string(std::istreambuf_iterator<char>(kept), {}), "kept");
@@ -138,7 +138,7 @@ TEST_F(CliErrors, OptionErrorsComeBeforeAnExistingOutput) {
 // used to be reported as "met with 95% confidence".
 TEST_F(CliErrors, MaxErrorNeedsEnoughCheckedCellsForItsBound) {
   expect_one_line_error(run_skyview("svf " + good + " " + dir + "/m.tif --max-error 0.05 --check-cells 10", dir),
-                        "needs 299 cells or more");
+                        "needs 299 cells or more", 2);
   // Without --max-error ten cells still measure, and record no bound.
   const RunResult few = run_skyview("svf " + good + " " + dir + "/c.tif --check-cells 10", dir);
   ASSERT_EQ(few.exit_code, 0) << few.err;
@@ -165,7 +165,7 @@ TEST_F(CliErrors, UnknownSubcommand) {
 }
 
 TEST_F(CliErrors, SynthAndBenchRefuseWhatTheyCannotMake) {
-  expect_one_line_error(run_skyview("synth city " + dir + "/c.tif --crs EPSG:4326", dir), "must be a projected CRS");
+  expect_one_line_error(run_skyview("synth city " + dir + "/c.tif --crs EPSG:4326", dir), "must be a projected CRS", 2);
   expect_one_line_error(run_skyview("bench " + good + " --methods '' --out " + dir + "/b", dir), "no method given");
   expect_one_line_error(run_skyview("bench " + good + " --methods sweep,sweep --out " + dir + "/b", dir),
                         "given twice");
@@ -210,9 +210,9 @@ TEST_F(CliErrors, DsmClassesOutsideTheLasRangeAreRefused) {
     return o;
   }());
   expect_one_line_error(run_skyview("dsm " + dir + "/c.tif --points " + dir + "/two.las --classes 2,300", dir),
-                        "class 300 is outside the LAS classes 0 to 255");
+                        "class 300 is outside the LAS classes 0 to 255", 2);
   expect_one_line_error(run_skyview("dsm " + dir + "/c.tif --points " + dir + "/two.las --classes 2,,6", dir),
-                        "comma-separated integers, not ''");
+                        "comma-separated integers, not ''", 2);
 }
 
 // GROUND_FROM says which returns were taken as ground: class 2 with --ground-only on a classified
@@ -548,17 +548,18 @@ TEST_F(CliErrors, GridLineAzimuthsNameTheirBandsAndRefuseWhatTheyCannotServe) {
   ASSERT_EQ(run_skyview("svf " + good + " " + s + " --products svf --azimuths grid-lines", dir).exit_code, 0);
   expect_one_line_error(
       run_skyview("svf " + good + " " + s + " --overwrite --azimuths grid-lines --directions 32", dir),
-      "needs 4, 8 or 16 directions (got 32)");
+      "needs 4, 8 or 16 directions (got 32)", 2);
   expect_one_line_error(
       run_skyview("svf " + good + " " + s + " --overwrite --azimuths grid-lines --directions 16 --method sampled", dir),
-      "needs fixed directions");
+      "needs fixed directions", 2);
   expect_one_line_error(
-      run_skyview("svf " + good + " " + s + " --overwrite --azimuths grid-lines --max-error 0.01", dir), "--azimuths");
+      run_skyview("svf " + good + " " + s + " --overwrite --azimuths grid-lines --max-error 0.01", dir), "--azimuths",
+      2);
   expect_one_line_error(
       run_skyview("horizon " + good + " " + h + " --overwrite --azimuths grid-lines --azimuth-origin north", dir),
-      "starts on grid north");
+      "starts on grid north", 2);
   expect_one_line_error(run_skyview("svf " + good + " " + s + " --overwrite --azimuths grid-lines --samples 16", dir),
-                        "every direction is exact");
+                        "every direction is exact", 2);
 }
 
 // GDAL's message for a format that cannot hold the bands breaks lines; the error stays one line.
@@ -648,7 +649,7 @@ TEST_F(CliErrors, OptionsTheRunWouldNotUseAreRefused) {
        "--far-lines applies only to --method sweep at unlimited radius (this run uses march)"},
       {"horizon " + good + o + " --method raycast --rays 64", "--rays applies only to skyview svf"},
       {"synth lidar " + dir + "/l.las -of GTiff", "--of applies only to the raster kinds"}};
-  for (const auto& [args, message] : refused) expect_one_line_error(run_skyview(args, dir), message);
+  for (const auto& [args, message] : refused) expect_one_line_error(run_skyview(args, dir), message, 2);
   EXPECT_FALSE(std::filesystem::exists(dir + "/o.tif"));
   EXPECT_FALSE(std::filesystem::exists(dir + "/l.las"));
   // With --curvature auto (the default) it is a request for rasters where curvature counts: on
@@ -666,10 +667,10 @@ TEST_F(CliErrors, OptionsTheRunWouldNotUseAreRefused) {
 // refused before the work, not after it.
 TEST_F(CliErrors, OutputsMustBeWritableInTheirFormatBeforeTheWork) {
   expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --preview " + dir + "/p.jpg", dir),
-                        "must end in .png");
-  expect_one_line_error(run_skyview("synth lidar " + dir + "/l.tif", dir), "must end in .las");
+                        "must end in .png", 2);
+  expect_one_line_error(run_skyview("synth lidar " + dir + "/l.tif", dir), "must end in .las", 2);
   expect_one_line_error(run_skyview("synth footprints " + dir + "/f.tif", dir),
-                        "must end in one of .geojson, .json, .gpkg, .shp");
+                        "must end in one of .geojson, .json, .gpkg, .shp", 2);
   const RunResult r = run_skyview("svf " + good + " " + dir + "/o.asc -of AAIGrid", dir);
   expect_one_line_error(r, "GDAL format 'AAIGrid' cannot write 5 float32 bands: AAIG driver doesn't support 5 bands");
   EXPECT_EQ(r.err.find("vsimem"), std::string::npos) << r.err;
@@ -691,11 +692,11 @@ TEST_F(CliErrors, OutputsMustBeWritableInTheirFormatBeforeTheWork) {
 // Runs whose every cell would come out blank or open are refused instead of written.
 TEST_F(CliErrors, RunsThatCouldOnlyGiveBlankOrOpenSkiesAreRefused) {
   expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --edge nodata", dir),
-                        "which with an unlimited radius is every cell");
+                        "which with an unlimited radius is every cell", 2);
   // The pit raster is 21 m across: no 11 m circle fits in it, a 10 m one fits at its centre only
   // (9.999: the raster's CRS measures on the ellipsoid, a hair off whole metres).
   expect_one_line_error(run_skyview("horizon " + good + " " + dir + "/o.tif --edge nodata --radius 11", dir),
-                        "which with --radius 11 is every cell of this raster");
+                        "which with --radius 11 is every cell of this raster", 2);
   EXPECT_EQ(run_skyview("svf " + good + " " + dir + "/o.tif --edge nodata --radius 9.999", dir).exit_code, 0);
   std::filesystem::remove(dir + "/o.tif");
   expect_one_line_error(run_skyview("svf " + good + " " + dir + "/o.tif --method sampled --radius 1e30", dir),

@@ -283,7 +283,7 @@ TEST_F(CompareCli, RefusesRastersOnDifferentGrids) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("different CRSs"), std::string::npos) << r.err;
   r = run(dir + "/value.tif " + dir + "/reference.tif --max-slope 5");
-  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--max-slope needs --dem"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   write(dir + "/empty.tif", Grid<float>(12, 10, kNaN));

@@ -149,13 +149,13 @@ TEST(SynthCli, CrsMustBeProjectedInMetres) {
   expect_one_line_error(
       run_skyview("synth plane " + out + " --size 11 --cell 10 --crs EPSG:2263 --origin 1000000 --northing 200000",
                   dir),
-      "--crs must be a projected CRS in metres ('EPSG:2263' is in US survey foot)");
+      "--crs must be a projected CRS in metres ('EPSG:2263' is in US survey foot)", 2);
   expect_one_line_error(run_skyview("synth lidar " + dir + "/l.las --size 64 --crs EPSG:2263", dir),
-                        "is in US survey foot");
+                        "is in US survey foot", 2);
   expect_one_line_error(run_skyview("synth plane " + out + " --size 11 --crs EPSG:4326", dir),
-                        "--crs must be a projected CRS in metres ('EPSG:4326' is geographic)");
+                        "--crs must be a projected CRS in metres ('EPSG:4326' is geographic)", 2);
   expect_one_line_error(run_skyview("synth plane " + out + " --size 11 --crs EPSG:32633+6360", dir),
-                        "has heights in US survey foot");
+                        "has heights in US survey foot", 2);
   // A grid placed where the CRS does not project (Albers USA, 6400 km north of its origin).
   expect_one_line_error(run_skyview("synth pit " + out + " --size 11 --crs ESRI:102003", dir),
                         "lies partly outside where its CRS projects");
@@ -169,12 +169,12 @@ TEST(SynthCli, OptionsTheKindDoesNotUseAreRefused) {
   const std::string dir = test::temp_dir("synth");
   for (const char* kind : {"canyon", "pit", "plane"}) {
     expect_one_line_error(run_skyview(std::string("synth ") + kind + " " + dir + "/x.tif --size 11 --seed 5", dir),
-                          "--seed applies only to city, mountains, lidar and footprints");
+                          "--seed applies only to city, mountains, lidar and footprints", 2);
   }
   expect_one_line_error(run_skyview("synth pit " + dir + "/x.tif --size 11 --density 3", dir),
-                        "--density applies only to lidar");
+                        "--density applies only to lidar", 2);
   expect_one_line_error(run_skyview("synth footprints " + dir + "/x.gpkg --size 64 --birds 3", dir),
-                        "--birds applies only to lidar");
+                        "--birds applies only to lidar", 2);
   expect_one_line_error(run_skyview("synth lidar " + dir + "/x.las --size 64 --birds -1", dir),
                         "must be zero or positive", 2);
   EXPECT_EQ(files_in(dir), std::set<std::string>{});

@@ -105,5 +105,5 @@ TEST(UnitsAndCrs, AnUnknownSSrsIsRefused) {
   const std::string dir = temp_dir("units");
   const std::string grid = write_ascii_pit(dir + "/pit.asc", 1000, 2000, 1.0);
   expect_one_line_error(run_skyview("svf " + grid + " " + dir + "/s.tif --s_srs EPSG:999999", dir),
-                        "is not a CRS GDAL knows");
+                        "is not a CRS GDAL knows", 2);
 }

@@ -78,7 +78,7 @@ TEST(SunCli, AmbiguousLocalTimeIsSaid) {
   r = run_sun("--lat 37.98 --lon 23.73 --time '2024-10-27T05:30 Europe/Athens' --csv");
   EXPECT_EQ(r.err, "");
   r = run_sun("--lat 37.98 --lon 23.73 --time 2024-10-27T12:30:60Z");
-  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("exists only in a leap second"), std::string::npos) << r.err;
 }
 
@@ -89,6 +89,7 @@ TEST(SunCli, HelpWorks) {
 }
 
 TEST(SunCli, BadInputIsOneLine) {
+  // Bad usage (an option's value or a combination of options) exits 2, as CLI11's own errors do.
   for (const char* args :
        {"--lat 95 --lon 0 --time 2024-01-01T00:00Z", "--lat 45 --lon 0 --time 7000-01-01T00:00Z",
         "--lat 45 --lon 0 --time '2024-01-01T00:00 Mars/Olympus'", "--lat x --lon 0 --time 2024-01-01Z",
@@ -104,7 +105,7 @@ TEST(SunCli, BadInputIsOneLine) {
         // Below -1e8 the library's sentinel for "automatic": it was taken as that.
         "--lat 45 --lon 0 --time 2024-01-01T12:00Z --delta-t -5e8", "--lat 45 --lon 0 --time 2024-01-01T12:00+18:59"}) {
     const SunRun r = run_sun(args);
-    EXPECT_EQ(r.exit_code, 1) << args;
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
     EXPECT_NE(r.err.find("skyview sun: error: "), std::string::npos) << r.err;
   }

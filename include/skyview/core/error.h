@@ -11,4 +11,13 @@ class Error : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A failure the caller fixes by changing an option (a value out of range, an option the run would
+// not use, two that contradict each other), as opposed to one in the data or the files. Its
+// message starts with the option's name. The command line exits 2 for these, as for the options
+// it cannot parse, and 1 for the rest; Python raises both as skyview.Error.
+class UsageError : public Error {
+ public:
+  using Error::Error;
+};
+
 }  // namespace skyview
