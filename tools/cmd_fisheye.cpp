@@ -79,8 +79,10 @@ int run(const CLI::App& app, FisheyeOptions o) {
   if (!o.time.empty() && !(o.turbidity >= 2.0 && o.turbidity <= 10.0))
     throw Error("--turbidity must be within 2 .. 10 (the Preetham sky's range)");
   double px = 0, py = 0;
-  if (!o.at.empty()) parse_pair(o.at, "--at", px, py);
-  else parse_pair(o.at_lonlat, "--at-lonlat", px, py);
+  if (!o.at.empty())
+    parse_pair(o.at, "--at", px, py);
+  else
+    parse_pair(o.at_lonlat, "--at-lonlat", px, py);
   std::optional<ParsedTime> when;
   if (!o.time.empty()) when = parse_time_option(o.time, o.tz);
   check_outputs_apart({o.output, o.mask}, {o.dsm});
@@ -160,8 +162,7 @@ Runner setup(CLI::App& app) {
   };
 }
 
-const Registration reg("fisheye", "Fish-eye picture of the sky seen from a point above a DSM, and its sky mask",
-                       setup);
+const Registration reg("fisheye", "Fish-eye picture of the sky seen from a point above a DSM, and its sky mask", setup);
 
 }  // namespace
 }  // namespace skyview::cli
