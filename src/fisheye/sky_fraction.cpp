@@ -2,29 +2,12 @@
 // Jacobian and by Steyn's annulus method.
 #include "skyview/fisheye/sky_fraction.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "skyview/core/error.h"
 
 namespace skyview {
-namespace {
-
-// dθ/dr for r as a fraction of the 90° radius (projection.h's formulas differentiated).
-double zenith_rate(Projection p, double r) {
-  switch (p) {
-    case Projection::equidistant:
-      return M_PI / 2;
-    case Projection::equisolid:
-      return std::sqrt(2.0) / std::sqrt(std::max(1e-12, 1.0 - r * r / 2.0));
-    case Projection::orthographic:
-      return 1.0 / std::sqrt(std::max(1e-12, 1.0 - r * r));
-    case Projection::stereographic:
-      return 2.0 / (1.0 + r * r);
-  }
-  return M_PI / 2;
-}
-
-}  // namespace
 
 SkyFractions sky_fractions(const std::vector<std::uint8_t>& sky, int width, int height, const FisheyeFrame& frame,
                            int rings) {
@@ -38,19 +21,27 @@ SkyFractions sky_fractions(const std::vector<std::uint8_t>& sky, int width, int 
             x1 = std::min(width - 1, static_cast<int>(std::ceil(frame.cx + R + 1)));
   const int y0 = std::max(0, static_cast<int>(std::floor(frame.cy - R - 1))),
             y1 = std::min(height - 1, static_cast<int>(std::ceil(frame.cy + R + 1)));
-  // The weights depend on the distance from the centre only: tabulated every 1/64 pixel.
+  // The weights depend on the distance from the centre only: tabulated every 1/64 pixel as the
+  // exact mean density over each thin ring, from the weight within radius r, sin²θ(r) for svf and
+  // 1 − cos θ(r) for sky visibility (each 1 over the hemisphere). The Jacobian itself would do at
+  // the ring's middle but for the orthographic projection's rim, where dθ/dr diverges.
   constexpr double kStep = 1.0 / 64;
   const std::size_t entries = static_cast<std::size_t>(R / kStep) + 2;
-  std::vector<double> table_svf(entries), table_vis(entries);
+  std::vector<double> table_svf(entries, 0.0), table_vis(entries, 0.0);
+  auto within = [&](double rp, double& w_svf, double& w_vis) {
+    const double theta = projection_zenith(frame.projection, std::min(rp / R, 1.0));
+    w_svf = std::sin(theta) * std::sin(theta);
+    w_vis = 1.0 - std::cos(theta);
+  };
   for (std::size_t i = 0; i < entries; ++i) {
-    const double rp = i * kStep, r = rp / R;
-    if (r > 1.0) continue;  // beyond 90°: no weight
-    const double theta = projection_zenith(frame.projection, r);
-    const double rate = zenith_rate(frame.projection, r) / R;  // dθ per pixel
-    // sin θ / r stays finite at the centre: its limit is dθ/dr there.
-    const double sin_over_r = rp > 1e-9 ? std::sin(theta) / rp : rate;
-    table_svf[i] = std::cos(theta) * sin_over_r * rate / M_PI / 16;
-    table_vis[i] = sin_over_r * rate / (2 * M_PI) / 16;
+    const double lo = std::max(0.0, (i - 0.5) * kStep), hi = (i + 0.5) * kStep;
+    if (lo >= R) break;
+    double s_lo, v_lo, s_hi, v_hi;
+    within(lo, s_lo, v_lo);
+    within(hi, s_hi, v_hi);
+    const double area = M_PI * (hi * hi - lo * lo) * 16;  // 16 samples per pixel
+    table_svf[i] = (s_hi - s_lo) / area;
+    table_vis[i] = (v_hi - v_lo) / area;
   }
   const double ring_scale = rings / (M_PI / 2);
   for (int y = y0; y <= y1; ++y) {

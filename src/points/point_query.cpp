@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "skyview/core/error.h"
+#include "skyview/core/number_text.h"
 
 namespace skyview {
 
@@ -33,11 +34,10 @@ PointQueryResult query_points(const Terrain& terrain, const PointTable& table, c
   r.values.assign(n, {kNaN, kNaN, kNaN});
   r.problem.assign(n, {});
   for (std::size_t i = 0; i < n; ++i) {
-    r.problem[i] = !table.rows[i].problem.empty() ? table.rows[i].problem
-                   : !r.horizons.problem[i].empty()
-                       ? "point (" + std::to_string(table.rows[i].x) + ", " + std::to_string(table.rows[i].y) +
-                             ") is " + r.horizons.problem[i]
-                       : "";
+    r.problem[i] = !table.rows[i].problem.empty()   ? table.rows[i].problem
+                   : !r.horizons.problem[i].empty() ? "point (" + number_text(table.rows[i].x) + ", " +
+                                                          number_text(table.rows[i].y) + ") is " + r.horizons.problem[i]
+                                                    : "";
     if (!r.problem[i].empty()) {
       ++r.failed;
       continue;

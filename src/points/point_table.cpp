@@ -231,6 +231,7 @@ void write_point_table(const std::string& path, const PointTable& table, const s
     const bool geometry = gpkg || !table.from_csv;
     char** lco = nullptr;
     if (!gpkg && !table.from_csv) lco = CSLSetNameValue(lco, "GEOMETRY", "AS_XY");
+    if (!gpkg) lco = CSLSetNameValue(lco, "STRING_QUOTING", "IF_NEEDED");  // the input's numbers stay numbers
     OGRLayer* layer =
         ds->CreateLayer(layer_name.c_str(), has_crs && geometry ? &srs : nullptr, geometry ? wkbPoint : wkbNone, lco);
     CSLDestroy(lco);
