@@ -3,7 +3,10 @@
 // r.horizon, SAGA and RVT), slow but without sampling gaps.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <utility>
+#include <vector>
 
 #include "methods.h"
 #include "ray_scan.h"
@@ -98,8 +101,22 @@ void march_point_horizons(const Terrain& extended, const std::vector<EyePoint>& 
   const std::size_t n = eyes.size();
   out.assign(n * directions, std::numeric_limits<float>::quiet_NaN());
   if (rising) rising->assign(n, {});
+  // Observers in Morton order of their cells, so that a thread's consecutive observers read nearby
+  // heights: rays cross the buffer and each sample is otherwise a cache miss.
+  std::vector<std::pair<std::uint64_t, std::size_t>> order(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint64_t code = 0;
+    if (!std::isnan(eyes[i].z)) {
+      const auto cx = static_cast<std::uint32_t>(eyes[i].col), cy = static_cast<std::uint32_t>(eyes[i].row);
+      for (int bit = 0; bit < 32; ++bit)
+        code |= (std::uint64_t{(cx >> bit) & 1u} << (2 * bit)) | (std::uint64_t{(cy >> bit) & 1u} << (2 * bit + 1));
+    }
+    order[i] = {code, i};
+  }
+  std::sort(order.begin(), order.end());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+    for (std::size_t j = r.begin(); j != r.end(); ++j) {
+      const std::size_t i = order[j].second;
       if (std::isnan(eyes[i].z)) continue;
       std::vector<std::vector<RisingStep>>* steps = nullptr;
       if (rising) {
