@@ -47,6 +47,12 @@ int run(const CLI::App& app, const FisheyeSvfCliOptions& o) {
   }
   const FisheyeImage image = read_fisheye_image(o.image);
   const FisheyeSvfResult r = fisheye_svf(image, s);
+  if (r.circle_found && r.circle.sectors < 8) {  // even under -q: the circle may be off
+    std::fprintf(stderr,
+                 "Warning: the image circle's rim showed in only %d of 12 sectors (dark at the rim?); check it with "
+                 "--classified, or give --center and --radius\n",
+                 r.circle.sectors);
+  }
   if (!o.classified.empty()) write_classified_png(o.classified, image, r, o.overwrite);
   const SkyFractions& f = r.fractions;
   if (o.json) {
@@ -58,7 +64,7 @@ int run(const CLI::App& app, const FisheyeSvfCliOptions& o) {
     j["radius"] = r.circle.radius;
     j["radius_90"] = r.frame.radius;
     j["circle"] = s.circle ? "given" : r.circle_found ? "found" : "inscribed";
-    if (r.circle_found) j["circle_rms"] = r.circle.rms;
+    if (r.circle_found) j["circle_rms"] = r.circle.rms, j["circle_sectors"] = r.circle.sectors;
     j["projection"] = o.projection;
     j["field_of_view"] = o.fov;
     j["classification"] = o.mask ? "mask" : o.threshold;

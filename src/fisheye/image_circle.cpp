@@ -41,7 +41,7 @@ bool fit_circle(const std::vector<Point>& p, ImageCircle& c) {
 }  // namespace
 
 ImageCircle inscribed_circle(int width, int height) {
-  return {(width - 1) / 2.0, (height - 1) / 2.0, std::min(width, height) / 2.0, 0.0, 0};
+  return {(width - 1) / 2.0, (height - 1) / 2.0, std::min(width, height) / 2.0, 0.0, 0, 0};
 }
 
 ImageCircle find_image_circle(const FisheyeImage& im) {
@@ -67,8 +67,10 @@ ImageCircle find_image_circle(const FisheyeImage& im) {
   constexpr const char* kHint = "; give --center and --radius (a full-frame fish-eye has no circle)";
   if (black > 40.0) throw Error(std::string("no image circle found: the corners are not black") + kHint);
   // Under-exposed canopy photographs keep their rim only a few levels above the black border.
-  // JPEG noise lifts a noisy black border by a few levels too: twice its level above it.
-  const double threshold = 6.0 + 2.0 * black;
+  // A border of exact zeros (as cameras and converters write it) leaves any level above it to the
+  // image, under-exposed canopy at the rim included; JPEG noise lifts a noisy black border by a few
+  // levels more: twice its level above it.
+  const double threshold = black == 0.0 ? 0.5 : 6.0 + 2.0 * black;
   auto cast_rays = [&](double cx, double cy, std::vector<Point>& edge) {
     edge.clear();
     const double reach = std::hypot(std::max(cx, w - 1 - cx), std::max(cy, h - 1 - cy));
@@ -99,7 +101,7 @@ ImageCircle find_image_circle(const FisheyeImage& im) {
   // circle is the one through the most edge points with (almost) none outside it. Candidates through
   // three edge points each (a fixed random sequence, so runs repeat), scored by the points within
   // tol of them less three for each point beyond 3 tol outside; the best refitted (Kåsa) to its points.
-  ImageCircle circle{(w - 1) / 2.0, (h - 1) / 2.0, 0, 0, 0};
+  ImageCircle circle{(w - 1) / 2.0, (h - 1) / 2.0, 0, 0, 0, 0};
   std::vector<Point> edge, kept;
   std::uint64_t state = 0x9E3779B97F4A7C15ull;
   auto next_index = [&](std::size_t n) {
@@ -141,7 +143,8 @@ ImageCircle find_image_circle(const FisheyeImage& im) {
       if (!fit_circle(kept, circle)) throw Error(std::string("no image circle found: too little of a rim") + kHint);
     }
   }
-  // The points must go round: at least 8 of 12 sectors of 30 degrees hold some.
+  // The points must go round: at least 5 of 12 sectors of 30 degrees hold some (dark canopy hides the
+  // rest of the rim of an under-exposed photograph; fewer than 8 is worth a look, ImageCircle::sectors).
   int sectors = 0;
   for (int k = 0; k < 12; ++k) {
     bool any = false;
@@ -152,7 +155,8 @@ ImageCircle find_image_circle(const FisheyeImage& im) {
     }
     sectors += any;
   }
-  if (kept.size() < 90 || sectors < 8 || circle.radius < 0.2 * std::min(w, h))
+  circle.sectors = sectors;
+  if (kept.size() < 60 || sectors < 5 || circle.radius < 0.2 * std::min(w, h))
     throw Error(std::string("no image circle found: the bright area's rim is not a circle") + kHint);
   double sum = 0;
   for (const Point& p : kept) sum += std::pow(std::hypot(p.x - circle.cx, p.y - circle.cy) - circle.radius, 2);

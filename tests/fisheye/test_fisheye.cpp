@@ -180,9 +180,15 @@ TEST(FisheyePhotograph, RealPhotographsGivePlausibleSvf) {
     double svf_lo, svf_hi;
   };
   const Case found[] = {
-      {"rcaiman_DSCN5547.JPG", 1270, 974, 781, 12, 0.90, 1.0},         // clearing: open sky
-      {"rcaiman_DSCN5548.JPG", 1270, 952, 766, 15, 0.10, 0.40},        // forest edge: a crown over half the sky
-      {"HorizonPy_Horizon_3.JPG", 2431, 1662, 1540, 25, 0.70, 0.90}};  // ridge over a third
+      {"rcaiman_DSCN5547.JPG", 1270, 974, 781, 12, 0.90, 1.0},  // clearing: open sky (SOURCE.md estimate)
+      // Forest edge, a crown over half the sky: the published zenith, 95° at 745 * 95 / 90 px.
+      {"rcaiman_DSCN5548.JPG", 1280, 960, 786, 15, 0.10, 0.40},
+      {"HorizonPy_Horizon_3.JPG", 2431, 1662, 1540, 25, 0.70, 0.90},  // ridge over a third
+      // Dark conifer canopy with a central gap: rcaiman's zenith and 95° circle; the rim shows only
+      // where sky reaches it.
+      {"rcaiman_DSCN4500.JPG", 1276, 980, 793, 40, 0.05, 0.30},
+      // Under-exposed chestnut canopy: hemispheR's centre; 754 px is its 90° radius of a 183° lens.
+      {"hemispheR_circular_coolpix4500+FC-E8_chestnut.jpg", 1136, 852, 767, 30, 0.02, 0.15}};
   for (const Case& c : found) {
     const FisheyeSvfResult r = fisheye_svf(read_fisheye_image(dir + c.file), {});
     EXPECT_TRUE(r.circle_found);
@@ -194,7 +200,7 @@ TEST(FisheyePhotograph, RealPhotographsGivePlausibleSvf) {
   }
   // Under-exposed canopy with the published circle: hemispheR's DIFN is 6.19 % (0-75°).
   FisheyeSvfOptions chestnut;
-  chestnut.circle = ImageCircle{1136, 852, 754, 0, 0};
+  chestnut.circle = ImageCircle{1136, 852, 754, 0, 0, 0};
   const FisheyeSvfResult r =
       fisheye_svf(read_fisheye_image(dir + "hemispheR_circular_coolpix4500+FC-E8_chestnut.jpg"), chestnut);
   EXPECT_GT(r.fractions.svf, 0.02);
