@@ -53,6 +53,12 @@ int run(const CLI::App& app, const FisheyeSvfCliOptions& o) {
                  "--classified, or give --center and --radius\n",
                  r.circle.sectors);
   }
+  if (r.fractions.coverage < 0.99) {
+    std::fprintf(stderr,
+                 "Warning: the 90 degree circle runs off the image: it holds %.1f%% of the hemisphere's svf weight, "
+                 "and the values are of that part only\n",
+                 100.0 * r.fractions.coverage);
+  }
   if (!o.classified.empty()) write_classified_png(o.classified, image, r, o.overwrite);
   const SkyFractions& f = r.fractions;
   if (o.json) {
@@ -70,6 +76,7 @@ int run(const CLI::App& app, const FisheyeSvfCliOptions& o) {
     j["classification"] = o.mask ? "mask" : o.threshold;
     if (!o.mask) j["threshold"] = r.classification.threshold;
     j["rings"] = f.rings;
+    j["coverage"] = f.coverage;
     j["pixels"] = f.pixels;
     j["sky_pixels"] = f.sky_pixels;
     std::printf("%s\n", j.dump().c_str());

@@ -75,6 +75,7 @@ SkyFractions sky_fractions(const std::vector<std::uint8_t>& sky, int width, int 
   }
   if (!(all_svf > 0)) throw Error("the image circle holds no pixel");
   f.svf = sky_svf / all_svf;
+  f.coverage = std::min(1.0, all_svf);  // the weights over the whole circle add up to 1
   f.sky_visibility = sky_vis / all_vis;
   double s = 0;
   for (int i = 0; i < rings; ++i) {

@@ -15,6 +15,9 @@ struct SkyFractions {
   double sky_visibility = 0;  // the same with w = ∫_pixel sin θ (dθ/dr) / (2π r) dA (solid angle / 2π)
   double svf_annulus = 0;     // (π/2n) Σ_i sin(π(2i − 1)/2n) p_i/t_i over n rings of equal zenith angle
   int rings = 0;
+  // The share of the hemisphere's svf weight that the image holds: below 1 where the 90° circle
+  // runs off the image (a full-frame fish-eye), whose missing part the fractions leave out.
+  double coverage = 0;
   long long pixels = 0, sky_pixels = 0;  // within θ ≤ 90°
 };
 
