@@ -98,7 +98,8 @@ int run(const CLI::App& app, const PointsOptions& o) {
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     std::fprintf(
-        stderr, "points: %zu points%s at %s m, svf %s, %d directions (%s), %.2f s -> %s\n", result.values.size(),
+        stderr, "points: %zu point%s%s at %s m, svf %s, %d directions (%s), %.2f s -> %s\n", result.values.size(),
+        result.values.size() == 1 ? "" : "s",
         result.failed ? (" (" + std::to_string(result.failed) + " without values)").c_str() : "",
         number_text(q.height).c_str(),
         result.failed == result.values.size()

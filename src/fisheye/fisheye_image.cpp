@@ -32,6 +32,9 @@ FisheyeImage read_fisheye_image(const std::string& path) {
   // 16-bit images (TIFF from a raw converter) are scaled to 8 bits rather than clipped.
   const GDALDataType type = ds->GetRasterBand(1)->GetRasterDataType();
   const bool wide = type == GDT_UInt16 || type == GDT_Int16;
+  if (type != GDT_Byte && !wide)  // a DEM or a result raster, not a picture
+    throw Error("'" + path + "' holds " + GDALGetDataTypeName(type) +
+                " values: a photograph or mask has 8- or 16-bit pixels");
   std::vector<std::uint16_t> wide_pixels(wide ? n : 0);
   int band_map[3] = {1, 2, 3};
   for (int c = 0; c < im.channels; ++c) {

@@ -18,6 +18,8 @@ FisheyeSvfResult fisheye_svf(const FisheyeImage& image, const FisheyeSvfOptions&
   if (!(edge_r > 0) || !std::isfinite(edge_r) || (o.projection == Projection::orthographic && o.field_of_view > 180.0))
     throw Error(std::string("the ") + projection_name(o.projection) + " projection cannot show " +
                 number_text(o.field_of_view) + " degrees");
+  if (image.channels == 1 && o.threshold != SkyThreshold::mask)
+    throw Error("a one-band image is a mask: read it with --mask (photographs have three bands)");
   FisheyeSvfResult r;
   if (o.circle) {
     r.circle = *o.circle;

@@ -104,6 +104,9 @@ TEST(FisheyeCli, RenderedMaskReadsBackToThePointsSvfAndBadInputIsRefused) {
   const std::vector<std::uint8_t> grey(64 * 64 * 3, 128);
   write_png(dir + "/grey.png", 64, 64, 3, grey.data(), false);
   test::expect_one_line_error(test::run_skyview("fisheye-svf " + dir + "/grey.png", dir), "no image circle found");
+  // A DEM is not a picture; a one-band picture is a mask.
+  test::expect_one_line_error(test::run_skyview("fisheye-svf " + city, dir), "holds Float32 values");
+  test::expect_one_line_error(test::run_skyview("fisheye-svf " + dir + "/v_mask.png", dir), "read it with --mask");
 }
 
 }  // namespace
