@@ -24,9 +24,13 @@ void add_observer_options(CLI::App& app, ObserverOptions& o, int directions) {
                  "or raycast (Embree rays, the reference; needs --height above 0)")
       ->check(CLI::IsMember({"march", "raycast"}))
       ->capture_default_str();
-  app.add_option("--directions", o.horizons.params.directions, "Number of azimuth directions (uniform sectors)")
-      ->check(CLI::Range(1, 65536))
-      ->capture_default_str();
+  CLI::Option* dirs =
+      app.add_option("--directions", o.horizons.params.directions,
+                     directions > 0 ? "Number of azimuth directions (uniform sectors)"
+                                    : "Number of azimuth directions (uniform sectors); default: one per pixel of the "
+                                      "picture's rim, a power of two")
+          ->check(CLI::Range(1, 65536));
+  if (directions > 0) dirs->capture_default_str();
   app.add_option("--radius", o.horizons.params.radius, "Search radius in metres (default: to the raster's edge)")
       ->check(positive_number());
   app.add_option("--curvature", o.horizons.params.curvature, "Earth curvature: auto, on, off")
