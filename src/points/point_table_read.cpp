@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "points/ogr_dataset.h"
 #include "skyview/core/error.h"
 #include "skyview/core/lowercase.h"
 #include "skyview/raster/raster_io.h"
@@ -23,15 +24,8 @@
 namespace skyview {
 namespace {
 
-struct DatasetCloser {
-  void operator()(GDALDataset* d) const { GDALClose(d); }
-};
-using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
-
-std::string last_gdal_error() {
-  const char* m = CPLGetLastErrorMsg();
-  return m && *m ? std::string(": ") + m : std::string();
-}
+using detail::DatasetPtr;
+using detail::last_gdal_error;
 
 std::string extension_of(const std::string& path) { return lowercase_extension(path); }
 

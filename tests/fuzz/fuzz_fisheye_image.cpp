@@ -9,22 +9,11 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "fuzz_gdal_setup.h"
 #include "skyview/core/error.h"
 #include "skyview/fisheye/fisheye_image.h"
 #include "skyview/fisheye/image_circle.h"
 #include "skyview/fisheye/sky_classifier.h"
-
-namespace skyview {
-// The reader's only call into the raster module: register GDAL's drivers (quietly).
-void init_gdal() {
-  static const bool once = [] {
-    GDALAllRegister();
-    CPLSetErrorHandler(CPLQuietErrorHandler);
-    return true;
-  }();
-  (void)once;
-}
-}  // namespace skyview
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const char* path = "/vsimem/fuzz_fisheye_image";
