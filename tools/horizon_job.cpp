@@ -23,6 +23,9 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
          "Metres per height unit (0.3048 for feet); default: the band's unit or vertical CRS, else metres if the "
          "CRS is in metres or degrees")
       ->check(positive_number());
+  app.add_option("--s_srs", o.s_srs,
+                 "The input's CRS where it carries none or a wrong one (EPSG:25833, a WKT or PROJ string), as "
+                 "gdal_translate -a_srs states it; without any CRS coordinates are taken as metres");
   app.add_option(
          "--method", o.method,
          "Horizon method: sweep (hull sweep, unlimited radius or --radius), march, sampled, raycast (Embree reference)")
@@ -127,6 +130,7 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   ReadOptions ro;
   ro.band = o.band;
   ro.z_scale = o.z_scale;
+  ro.assign_crs = o.s_srs;
   ReadReport report;
   job.terrain = read_terrain(o.input, ro, &report);
   if (report.undeclared_nan_cells > 0) {  // even under -q: it changes what the data say

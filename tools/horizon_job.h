@@ -21,6 +21,7 @@ struct HorizonJobOptions {
   std::string input, output;
   int band = 1;
   double z_scale = 0.0;          // 0: from the raster (height_unit.h)
+  std::string s_srs;             // the input's CRS where it states none (or a wrong one)
   std::string method = "sweep";  // exact and the fastest for a given error (docs/benchmarks.md)
   std::string edge = "open";
   double max_error = -1.0;  // >= 0: choose method and parameters for this p99 svf error

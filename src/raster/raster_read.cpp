@@ -3,6 +3,7 @@
 #include <cpl_conv.h>
 #include <cpl_error.h>
 #include <gdal_priv.h>
+#include <ogr_spatialref.h>
 
 #include <algorithm>
 #include <cmath>
@@ -11,6 +12,7 @@
 
 #include "raster/gdal_common.h"
 #include "skyview/core/error.h"
+#include "skyview/core/number_text.h"
 #include "skyview/raster/height_unit.h"
 #include "skyview/raster/raster_read.h"
 
@@ -147,28 +149,74 @@ RasterBand read_band(const std::string& path, int band_index) {
   return out;
 }
 
-Terrain read_terrain(const std::string& path, const ReadOptions& options, ReadReport* report) {
-  RawBand raw = read_raw_band(path, options.band);
-  const HeightUnit unit =
-      height_unit(*raw.ds->GetRasterBand(options.band), raw.ds->GetSpatialRef(), options.z_scale, path);
-  const int width = raw.width, height = raw.height;
+namespace {
+
+bool starts_with(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+
+// Cells whose ground size and heights cannot both be metres give every angle wrong and no error:
+// an ASCII grid in degrees without its .prj read as metres gave a mean svf of 0.12 where its CRS
+// gives 0.72. Refused where the unit of either side was assumed; a raster without a CRS or a
+// geotransform is said on stderr, since every distance rests on that assumption.
+void check_units(const std::string& name, const Terrain& t, double relief, const std::string& height_unit) {
+  const GeoReference& g = t.georef;
+  const bool no_crs = g.crs_wkt.empty();
+  const bool heights_assumed = starts_with(height_unit, "metres (assumed");
+  if (no_crs && g.has_geotransform) {
+    const auto& gt = g.geotransform;
+    const double x0 = g.x_of(-0.5, -0.5), y0 = g.y_of(-0.5, -0.5);
+    const double x1 = g.x_of(t.width() - 0.5, t.height() - 0.5), y1 = g.y_of(t.width() - 0.5, t.height() - 0.5);
+    const bool in_lon_lat =
+        std::max(std::abs(x0), std::abs(x1)) <= 180.0 && std::max(std::abs(y0), std::abs(y1)) <= 90.0;
+    const double cell = std::max(std::hypot(gt[1], gt[4]), std::hypot(gt[2], gt[5]));
+    if (in_lon_lat && cell < 0.01) {
+      throw Error("'" + name + "' has no CRS, and its cells (" + number_text(cell) +
+                  " units) and extent look like degrees of longitude and latitude, not metres; give --s_srs with "
+                  "its CRS (EPSG:4326 for WGS 84 degrees)");
+    }
+  }
+  const double cell = raster_centre_jacobian(t).min_cell_size();
+  if ((no_crs || heights_assumed) && cell < 0.05 && relief > 10.0) {
+    throw Error("'" + name + "' has cells of " + number_text(cell) + " m against " + number_text(relief) +
+                " m of relief: its cells and heights cannot both be metres; give --s_srs with its CRS, or --z-scale "
+                "with its heights' unit");
+  }
+  if (!g.has_geotransform) {
+    CPLError(CE_Warning, CPLE_AppDefined,
+             "'%s' has no geotransform: its cells are taken as 1 m squares, north up (give it a geotransform, e.g. "
+             "gdal_translate -a_ullr, and a CRS)",
+             name.c_str());
+  } else if (no_crs) {
+    CPLError(CE_Warning, CPLE_AppDefined,
+             "'%s' has no CRS: its coordinates are taken as metres on a flat plane (give --s_srs to state its CRS)",
+             name.c_str());
+  }
+}
+
+}  // namespace
+
+Terrain terrain_from_heights(HeightValues&& h, const ReadOptions& options, ReadReport* report) {
+  const std::string& path = h.name;
+  const int width = h.width, height = h.height;
+  if (width < 1 || height < 1 || h.values.size() != static_cast<std::size_t>(width) * height)
+    throw Error("'" + path + "' holds no grid of heights (internal error)");
   if (static_cast<std::int64_t>(width) * height < 2) {
     throw Error("'" + path + "' has a single cell: a horizon needs at least two cells");
   }
-  std::vector<double>& values = raw.values;
-  const int has_nodata = raw.has_nodata;
-  const double nodata = raw.nodata;
+  std::vector<double>& values = h.values;
+  const bool has_nodata = h.has_nodata;
+  const double nodata = h.nodata;
   const bool nodata_is_nan = has_nodata && std::isnan(nodata);
+  auto masked = [&](std::size_t i) { return !h.mask.empty() && h.mask[i] == 0; };
 
   ReadReport rep;
-  rep.has_nodata_value = has_nodata != 0;
+  rep.has_nodata_value = has_nodata;
   rep.nodata_value = nodata;
-  rep.z_scale = unit.metres;
-  rep.height_unit = unit.source;
+  rep.z_scale = h.metres;
+  rep.height_unit = h.height_unit;
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (std::size_t i = 0; i < values.size(); ++i) {
     double& v = values[i];
-    if (raw.masked(i)) {
+    if (masked(i)) {
       v = std::numeric_limits<double>::quiet_NaN();
       ++rep.nodata_cells;
       ++rep.masked_cells;
@@ -194,7 +242,7 @@ Terrain read_terrain(const std::string& path, const ReadOptions& options, ReadRe
       throw Error("'" + path + "' holds an infinite height at cell (" + std::to_string(i % width) + ", " +
                   std::to_string(i / width) + "); set it to the nodata value");
     }
-    v *= unit.metres;
+    v *= h.metres;
     lo = std::min(lo, v);
     hi = std::max(hi, v);
   }
@@ -207,11 +255,13 @@ Terrain read_terrain(const std::string& path, const ReadOptions& options, ReadRe
   t.base_height = 0.5 * (lo + hi);
   t.heights = Grid<float>(width, height);
   for (std::size_t i = 0; i < values.size(); ++i) t.heights.values()[i] = static_cast<float>(values[i] - t.base_height);
-  t.georef = georeference_of(*raw.ds);
+  t.georef = std::move(h.georef);
   const auto& gt = t.georef.geotransform;
   if (t.georef.has_geotransform && (gt[1] * gt[5] - gt[2] * gt[4]) == 0.0) {
     throw Error("'" + path + "' has a degenerate geotransform (zero cell size)");
   }
+  if (!t.georef.has_geotransform && !t.georef.crs_wkt.empty())
+    throw Error("'" + path + "' has a CRS but no geotransform: where its cells lie is unknown");
   try {
     t.frame = GroundFrame(t.georef, width, height);
   } catch (const Error& e) {
@@ -219,8 +269,47 @@ Terrain read_terrain(const std::string& path, const ReadOptions& options, ReadRe
   }
   t.full_width = width;
   t.full_height = height;
+  check_units(path, t, hi - lo, h.height_unit);
   if (report) *report = rep;
   return t;
+}
+
+std::string crs_from_user_input(const std::string& text, const std::string& option) {
+  init_gdal();
+  OGRSpatialReference srs;
+  const CPLErrorHandlerPusher quiet(CPLQuietErrorHandler);
+  if (srs.SetFromUserInput(text.c_str()) != OGRERR_NONE)
+    throw Error(option + " '" + text + "' is not a CRS GDAL knows (EPSG:25833, a WKT or PROJ string)");
+  char* wkt = nullptr;
+  const char* opts[] = {"FORMAT=WKT2_2018", nullptr};
+  srs.exportToWkt(&wkt, opts);
+  std::string out = wkt ? wkt : "";
+  CPLFree(wkt);
+  return out;
+}
+
+Terrain read_terrain(const std::string& path, const ReadOptions& options, ReadReport* report) {
+  RawBand raw = read_raw_band(path, options.band);
+  HeightValues h;
+  h.name = path;
+  h.width = raw.width;
+  h.height = raw.height;
+  h.georef = georeference_of(*raw.ds);
+  OGRSpatialReference assigned;
+  const OGRSpatialReference* crs = raw.ds->GetSpatialRef();
+  if (!options.assign_crs.empty()) {  // --s_srs: what the file's CRS is, as gdal_translate -a_srs states it
+    h.georef.crs_wkt = crs_from_user_input(options.assign_crs, "--s_srs");
+    assigned.importFromWkt(h.georef.crs_wkt.c_str());
+    crs = &assigned;
+  }
+  const HeightUnit unit = height_unit(*raw.ds->GetRasterBand(options.band), crs, options.z_scale, path);
+  h.metres = unit.metres;
+  h.height_unit = unit.source;
+  h.values = std::move(raw.values);
+  h.mask = std::move(raw.mask);
+  h.has_nodata = raw.has_nodata != 0;
+  h.nodata = raw.nodata;
+  return terrain_from_heights(std::move(h), options, report);
 }
 
 }  // namespace skyview

@@ -78,4 +78,13 @@ inline std::string wkt_of(const char* user_crs) {
   return s;
 }
 
+// `terrain` (rasterised on local_grid) with a CRS: a Transverse Mercator of scale 1 centred on
+// the raster's centre, where grid north is true north and cells keep their size, so that runs
+// behave as on local_grid, for tests whose stderr must hold nothing but what they test (a raster
+// without a CRS is warned of).
+inline Terrain with_local_metric_crs(Terrain terrain) {
+  terrain.georef.crs_wkt = wkt_of("+proj=tmerc +lat_0=0 +lon_0=0 +k=1 +x_0=0 +y_0=0 +datum=WGS84 +units=m +no_defs");
+  return terrain;
+}
+
 }  // namespace skyview::test

@@ -2,6 +2,7 @@
 // Reading height rasters and result bands from any GDAL format.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "skyview/core/grid.h"
 #include "skyview/raster/terrain.h"
@@ -19,6 +20,8 @@ struct ReadOptions {
   double z_scale = 0.0;
   // Undeclared NaN cells count as nodata (with a warning) instead of an error.
   bool nan_is_nodata = true;
+  // The raster's CRS where it carries none or a wrong one (--s_srs: EPSG code, WKT or PROJ string).
+  std::string assign_crs;
 };
 
 struct ReadReport {
@@ -46,6 +49,27 @@ BandPacking band_packing(GDALRasterBand& band, const std::string& path, int band
 // file) for a missing/unreadable file, a band out of range, a raster smaller than 2x2, an all-nodata band, infinite
 // values, or a CRS that cannot give ground distances.
 Terrain read_terrain(const std::string& path, const ReadOptions& options, ReadReport* report = nullptr);
+
+// Heights already in memory (a window the tiled driver read, a NumPy array): what read_terrain
+// gets from a file, and the same checks and conversion to a Terrain.
+struct HeightValues {
+  std::string name;  // for messages: the file, or what the caller calls the array
+  int width = 0, height = 0;
+  std::vector<double> values;      // row-major; NaN is nodata
+  std::vector<std::uint8_t> mask;  // empty, or 0 where a cell holds no data whatever its value
+  bool has_nodata = false;
+  double nodata = 0.0;  // the value that marks nodata, where has_nodata
+  GeoReference georef;
+  double metres = 1.0;                          // metres per height unit
+  std::string height_unit = "metres (stated)";  // what said so ("metres (assumed..." where nothing did)
+};
+// Throws skyview::Error as read_terrain does, and for cells and heights that cannot both be
+// metres (where either's unit was assumed) or a geotransform that looks like degrees without a CRS;
+// warns on stderr (through GDAL's handler) of a raster without a CRS or a geotransform.
+Terrain terrain_from_heights(HeightValues&& values, const ReadOptions& options, ReadReport* report = nullptr);
+
+// The WKT of a CRS given as an EPSG code, WKT or PROJ string; throws naming `option`.
+std::string crs_from_user_input(const std::string& text, const std::string& option);
 
 // One band of any raster as floats (NaN where nodata or masked), for comparing results: values as stored,
 // no checks beyond the file opening and the band existing.
