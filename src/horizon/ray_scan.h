@@ -26,6 +26,7 @@
 #include "earth_curvature.h"
 #include "height_sampler.h"
 #include "skyview/horizon/horizon_engine.h"
+#include "skyview/horizon/point_horizons.h"
 
 namespace skyview::detail {
 
@@ -87,11 +88,12 @@ struct MaxBlocks {
 };
 
 // Placement must provide kDenseSteps (true when consecutive samples are about a cell apart) and
-//   template <class Visit> void walk(double col_per_m, double row_per_m, double max_distance, double curvature,
-//                                    Visit&& visit) const;
+//   template <class Visit> void walk(double col, double row, double col_per_m, double row_per_m,
+//                                    double max_distance, double curvature, Visit&& visit) const;
 // calling visit(d, 1/d, curvature*d*d) for increasing distances d <= max_distance (where the ray
-// leaves the buffer). visit returns a negative number to stop, or a distance r >= d: the walk
-// goes on with its first sample farther than r.
+// leaves the buffer) along the ray from pixel position (col, row) (a cell centre, or any point for
+// point queries). visit returns a negative number to stop, or a distance r >= d: the walk goes on
+// with its first sample farther than r.
 // One cell's walk along every direction, with what all cells share (the direction set, the
 // raster's extremes, the pyramid) built once.
 template <class Placement>
@@ -124,23 +126,32 @@ class RayScanner {
   // The valid cell (col, row)'s horizons: direction k at up[plane * k] (and lo[plane * k] when
   // lowest angles are asked for); its rotation of the direction set at *rotation when rotating.
   void scan(int col, int row, float* up, float* lo, std::size_t plane, float* rotation) const {
+    double rot = 0.0;
+    if (s_.rotate) {
+      rot = (cell_random(terrain_.global_id(col, row), s_.seed) - 0.5) * (2.0 * M_PI / s_.directions);
+      *rotation = static_cast<float>(rot);
+    }
+    scan_from(col, row, terrain_.heights(col, row), rot, up, lo, plane, nullptr);
+  }
+
+  // The horizons seen from pixel position (x, y) inside the buffer at height z0 (the buffer's
+  // units), the direction set turned by `rot`: what scan() does for a cell centre, for any point
+  // (point queries: an observer above the surface between cell centres). With `rising`
+  // (directions entries), each direction's steps of the steepest slope in order of distance, for
+  // pictures that shade what a ray meets by its distance.
+  void scan_from(double eye_col, double eye_row, double z0, double rot, float* up, float* lo, std::size_t plane,
+                 std::vector<std::vector<RisingStep>>* rising) const {
     const Terrain& terrain = terrain_;
     const ScanSettings& s = s_;
     const HeightSampler& sampler = sampler_;
-    const double sector = 2.0 * M_PI / s.directions;
     const double c = s.curvature;
     const bool early = s.early_exit;
     constexpr double kInf = std::numeric_limits<double>::infinity();
     constexpr double kTieMargin = 1e-6;  // metres
     const double last_col = terrain.width() - 1, last_row = terrain.height() - 1;
-    const double z0 = terrain.heights(col, row);
-    const double above = zmax_ - z0;  // >= 0
-    const double below = zmin_ - z0;  // <= 0
-    double rot = 0.0;
-    if (s.rotate) {
-      rot = (cell_random(terrain.global_id(col, row), s.seed) - 0.5) * sector;
-      *rotation = static_cast<float>(rot);
-    }
+    const double col = eye_col, row = eye_row;
+    const double above = std::max(0.0, zmax_ - z0);  // an observer may stand above every cell
+    const double below = std::min(0.0, zmin_ - z0);
     const double sr = std::sin(rot), cr = std::cos(rot);
     // Inverse Jacobian: metres east/north -> pixel columns/rows.
     const Jacobian j = terrain.frame.at(col + terrain.origin_col, row + terrain.origin_row);
@@ -161,51 +172,55 @@ class RayScanner {
       const double exit_r = pr > 0 ? (last_row - row) / pr : (pr < 0 ? -row / pr : kInf);
       const double inv_pc = pc != 0.0 ? 1.0 / pc : 0.0, inv_pr = pr != 0.0 ? 1.0 / pr : 0.0;
       std::size_t judged[2] = {SIZE_MAX, SIZE_MAX};  // the block of each level last judged
-      placement_.walk(pc, pr, std::min(exit_c, exit_r) * (1.0 + 1e-12), c, [&](double d, double inv_d, double drop) {
-        const double x = std::clamp(col + pc * d, 0.0, last_col), y = std::clamp(row + pr * d, 0.0, last_row);
-        const double z = sampler.at(x, y);
-        if (!std::isnan(z)) {
-          const double t = (z - z0 - drop) * inv_d;
-          max_t = std::max(max_t, t);
-          min_t = std::min(min_t, t);
-        }
-        if (early) {
-          const double bound_hi = (above - drop) * inv_d;  // decreasing in d since above >= 0
-          if (bound_hi <= max_t) {
-            if (!lo) return -1.0;
-            const double bound_lo = below * inv_d - c * s.max_distance;
-            if (bound_lo >= min_t) return -1.0;
-          }
-        }
-        // The largest block around this sample whose cells cannot beat max_t anywhere on
-        // the ray's stretch through it (curvature only lowers them further). Each block is
-        // judged once, when the ray enters it: checking every sample cost more than it saved.
-        for (std::size_t l = 0; l < levels_.size(); ++l) {
-          const MaxBlocks& level = levels_[l];
-          const int bx = static_cast<int>(x) >> level.shift;  // x <= last_col: always a block
-          const int by = static_cast<int>(y) >> level.shift;
-          const std::size_t b = static_cast<std::size_t>(by) * level.cols + bx;
-          if (b == judged[l]) continue;
-          judged[l] = b;
-          // The margin keeps a sample on the block's border, whose slope rounds differently
-          // from this bound, from tying with max_t: skipped samples stay strictly below it.
-          const double rise = level.max[b] - z0 + kTieMargin;
-          if (rise > 0 && !(rise <= max_t * d)) continue;  // cheap test before the exit distance
-          const double x0 = bx * level.size, y0 = by * level.size;
-          const double leave_c = pc > 0 ? (x0 + level.size - col) * inv_pc : (pc < 0 ? (x0 - col) * inv_pc : kInf);
-          const double leave_r = pr > 0 ? (y0 + level.size - row) * inv_pr : (pr < 0 ? (y0 - row) * inv_pr : kInf);
-          const double leave = std::min(leave_c, leave_r);
-          // rise / d' over [d, leave] peaks at d when rise > 0 and at leave otherwise.
-          if (!(rise <= max_t * (rise > 0 ? d : leave))) continue;
-          if (lo) {
-            // (fall - c d'^2) / d' has no interior minimum on [d, leave]: check both ends.
-            const double fall = level.min[b] - z0 - kTieMargin;
-            if (!(std::min(fall / d - c * d, fall / leave - c * leave) >= min_t)) continue;
-          }
-          return std::max(d, leave);
-        }
-        return d;
-      });
+      std::vector<RisingStep>* steps = rising ? &(*rising)[static_cast<std::size_t>(k)] : nullptr;
+      if (steps) steps->clear();
+      placement_.walk(
+          col, row, pc, pr, std::min(exit_c, exit_r) * (1.0 + 1e-12), c, [&](double d, double inv_d, double drop) {
+            const double x = std::clamp(col + pc * d, 0.0, last_col), y = std::clamp(row + pr * d, 0.0, last_row);
+            const double z = sampler.at(x, y);
+            if (!std::isnan(z)) {
+              const double t = (z - z0 - drop) * inv_d;
+              if (steps && t > max_t) steps->push_back({static_cast<float>(d), static_cast<float>(t)});
+              max_t = std::max(max_t, t);
+              min_t = std::min(min_t, t);
+            }
+            if (early) {
+              const double bound_hi = (above - drop) * inv_d;  // decreasing in d since above >= 0
+              if (bound_hi <= max_t) {
+                if (!lo) return -1.0;
+                const double bound_lo = below * inv_d - c * s.max_distance;
+                if (bound_lo >= min_t) return -1.0;
+              }
+            }
+            // The largest block around this sample whose cells cannot beat max_t anywhere on
+            // the ray's stretch through it (curvature only lowers them further). Each block is
+            // judged once, when the ray enters it: checking every sample cost more than it saved.
+            for (std::size_t l = 0; l < levels_.size(); ++l) {
+              const MaxBlocks& level = levels_[l];
+              const int bx = static_cast<int>(x) >> level.shift;  // x <= last_col: always a block
+              const int by = static_cast<int>(y) >> level.shift;
+              const std::size_t b = static_cast<std::size_t>(by) * level.cols + bx;
+              if (b == judged[l]) continue;
+              judged[l] = b;
+              // The margin keeps a sample on the block's border, whose slope rounds differently
+              // from this bound, from tying with max_t: skipped samples stay strictly below it.
+              const double rise = level.max[b] - z0 + kTieMargin;
+              if (rise > 0 && !(rise <= max_t * d)) continue;  // cheap test before the exit distance
+              const double x0 = bx * level.size, y0 = by * level.size;
+              const double leave_c = pc > 0 ? (x0 + level.size - col) * inv_pc : (pc < 0 ? (x0 - col) * inv_pc : kInf);
+              const double leave_r = pr > 0 ? (y0 + level.size - row) * inv_pr : (pr < 0 ? (y0 - row) * inv_pr : kInf);
+              const double leave = std::min(leave_c, leave_r);
+              // rise / d' over [d, leave] peaks at d when rise > 0 and at leave otherwise.
+              if (!(rise <= max_t * (rise > 0 ? d : leave))) continue;
+              if (lo) {
+                // (fall - c d'^2) / d' has no interior minimum on [d, leave]: check both ends.
+                const double fall = level.min[b] - z0 - kTieMargin;
+                if (!(std::min(fall / d - c * d, fall / leave - c * leave) >= min_t)) continue;
+              }
+              return std::max(d, leave);
+            }
+            return d;
+          });
       up[plane * k] = std::isinf(max_t) ? 0.0f : static_cast<float>(std::atan(max_t));
       if (lo) lo[plane * k] = std::isinf(min_t) ? 0.0f : static_cast<float>(std::atan(min_t));
     }

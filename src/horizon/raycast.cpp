@@ -58,6 +58,15 @@ struct EyeContext {
   unsigned vertex = 0;       // the eye's vertex in the mesh over cell centres
 };
 
+// Where rays leave: a cell's vertex, or (point queries) any point above the surface, which has no
+// vertex and whose rays need no filter (kNoVertex matches none).
+constexpr unsigned kNoVertex = 0xFFFFFFFFu;
+struct Eye {
+  double col = 0, row = 0;  // pixel position in the buffer
+  double z = 0;             // height in the mesh's sign
+  unsigned vertex = kNoVertex;
+};
+
 // What the filter and the horizon search know of the mesh: its triangles and vertices (Embree
 // owns both buffers).
 struct Triangles {
@@ -76,6 +85,17 @@ void reject_own_triangles(const RTCFilterFunctionNArguments* args) {
 }
 
 // Vertices in metres east/north of the buffer's first cell and height relative to the base.
+// An Embree device whose errors land in `failure` (which must outlive it).
+DevicePtr new_device(std::string& failure) {
+  DevicePtr device(rtcNewDevice(nullptr));
+  if (!device) throw Error("cannot start Embree");
+  if (!rtcGetDeviceProperty(device.get(), RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED)) {
+    throw Error("this Embree was built without filter functions, which the ray cast needs");
+  }
+  rtcSetDeviceErrorFunction(device.get(), embree_error, &failure);
+  return device;
+}
+
 class TerrainMesh {
  public:
   TerrainMesh(RTCDevice device, const Terrain& t, double sign) : t_(t), sign_(sign) {
@@ -114,20 +134,26 @@ class TerrainMesh {
     rtcCommitScene(scene_.get());
   }
 
+  // The eye of cell (col, row), on its vertex at its height (in this mesh's sign).
+  Eye cell_eye(int col, int row) const {
+    return {static_cast<double>(col), static_cast<double>(row), sign_ * t_.heights(col, row),
+            static_cast<unsigned>(row * width_ + col)};
+  }
+
   // The context that tells the filter whose triangles to ignore.
-  EyeContext eye(int col, int row) const {
+  static EyeContext context_of(const Eye& e) {
     EyeContext context;
     rtcInitIntersectContext(&context.base);
-    context.vertex = static_cast<unsigned>(row * width_ + col);
+    context.vertex = e.vertex;
     return context;
   }
 
-  // A ray from the cell's vertex (the same floats as the vertex) at height z.
-  RTCRay ray_from(int col, int row, double z, double sin_az, double cos_az, double elevation, double range) const {
+  // A ray from the eye (for a cell, the same floats as its vertex).
+  RTCRay ray_from(const Eye& e, double sin_az, double cos_az, double elevation, double range) const {
     RTCRay ray{};
-    ray.org_x = static_cast<float>(j_.a * col + j_.b * row);
-    ray.org_y = static_cast<float>(j_.c * col + j_.d * row);
-    ray.org_z = static_cast<float>(z);
+    ray.org_x = static_cast<float>(j_.a * e.col + j_.b * e.row);
+    ray.org_y = static_cast<float>(j_.c * e.col + j_.d * e.row);
+    ray.org_z = static_cast<float>(e.z);
     const double ce = std::cos(elevation);
     ray.dir_x = static_cast<float>(ce * sin_az);
     ray.dir_y = static_cast<float>(ce * cos_az);
@@ -183,7 +209,8 @@ class TerrainMesh {
   // track ending on nodata (a collar of nodata around a city) bounded nothing, and such rays
   // escaped: 50° below a building's top at one cell. NaN where the track ends at once or meets
   // no terrain.
-  double end_slope(int col, int row, double sin_az, double cos_az, double range) const {
+  double end_slope(const Eye& e, double sin_az, double cos_az, double range) const {
+    const double col = e.col, row = e.row;
     double pc, pr;
     j_.pixel_step(sin_az, cos_az, pc, pr);
     const double last_c = t_.width() - 1, last_r = t_.height() - 1;
@@ -195,52 +222,40 @@ class TerrainMesh {
     for (double d = end; d > 0.0; d -= back) {
       const double x = std::clamp(col + pc * d, 0.0, last_c), y = std::clamp(row + pr * d, 0.0, last_r);
       const double z = surface(x, y);
-      if (!std::isnan(z)) return sign_ * (z - t_.heights(col, row)) / d;
+      if (!std::isnan(z)) return (sign_ * z - e.z) / d;
     }
     return std::numeric_limits<double>::quiet_NaN();
   }
 
   // The mesh's height at pixel position (x, y) inside the buffer, from the triangle holding it (the
   // quad's split as built); NaN where that triangle has a nodata corner.
-  double surface(double x, double y) const {
-    const int x0 = std::min(static_cast<int>(x), std::max(0, t_.width() - 2));
-    const int y0 = std::min(static_cast<int>(y), std::max(0, t_.height() - 2));
-    const double fx = x - x0, fy = y - y0;
-    const int x1 = std::min(x0 + 1, t_.width() - 1), y1 = std::min(y0 + 1, t_.height() - 1);
-    const double za = t_.heights(x0, y0), zb = t_.heights(x1, y0), zd = t_.heights(x0, y1), ze = t_.heights(x1, y1);
-    // Along a grid line only its two ends count.
-    if (fy == 0.0) return fx == 0.0 ? za : za + fx * (zb - za);
-    if (fx == 0.0) return za + fy * (zd - za);
-    // The split as surface_mesh builds it (in a half quad, the valid triangle's).
-    if (quad_splits_along_ae(za, zb, zd, ze, sign_)) {
-      return fx >= fy ? za + fx * (zb - za) + fy * (ze - zb) : za + fy * (zd - za) + fx * (ze - zd);
-    }
-    return fx + fy <= 1.0 ? za + fx * (zb - za) + fy * (zd - za) : ze + (1 - fx) * (zd - ze) + (1 - fy) * (zb - ze);
-  }
+  double surface(double x, double y) const { return surface_height(t_, x, y, sign_); }
 
-  // True when the ray from (col,row) at height z, along azimuth/elevation, hits terrain within `range`.
-  bool occluded(int col, int row, double z, double sin_az, double cos_az, double elevation, double range) const {
-    if (std::tan(elevation) < first_crossing_slope(col, row, sin_az, cos_az)) return true;
-    EyeContext context = eye(col, row);
-    RTCRay ray = ray_from(col, row, z, sin_az, cos_az, elevation, range);
+  // True when the ray from the eye along azimuth/elevation hits terrain within `range`; `first_slope`
+  // from first_crossing_slope for a cell's eye, -inf for a point's.
+  bool occluded(const Eye& e, double sin_az, double cos_az, double elevation, double range, double first_slope) const {
+    if (std::tan(elevation) < first_slope) return true;
+    EyeContext context = context_of(e);
+    RTCRay ray = ray_from(e, sin_az, cos_az, elevation, range);
     rtcOccluded1(scene_.get(), &context.base, &ray);
-    return ray.tfar < 0.0f || std::tan(elevation) < end_slope(col, row, sin_az, cos_az, range);
+    return ray.tfar < 0.0f || std::tan(elevation) < end_slope(e, sin_az, cos_az, range);
   }
 
   // The highest elevation angle (radians) of terrain that the ray from (col,row) at height z,
   // along azimuth/elevation, meets within `range`: the top of the first triangle it hits, cut by
   // the azimuth's vertical plane. NaN when it meets nothing. Rays below `first_slope` (from
   // first_crossing_slope) meet the terrain at once, and that crossing's angle is the answer.
-  double blocking_angle(int col, int row, double z, double sin_az, double cos_az, double elevation, double range,
+  double blocking_angle(const Eye& e, double sin_az, double cos_az, double elevation, double range,
                         double first_slope) const {
     if (std::tan(elevation) < first_slope) return std::atan(first_slope);
-    EyeContext context = eye(col, row);
+    const double z = e.z;
+    EyeContext context = context_of(e);
     RTCRayHit hit{};
-    hit.ray = ray_from(col, row, z, sin_az, cos_az, elevation, range);
+    hit.ray = ray_from(e, sin_az, cos_az, elevation, range);
     hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene_.get(), &context.base, &hit);
     if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
-      const double end = end_slope(col, row, sin_az, cos_az, range);
+      const double end = end_slope(e, sin_az, cos_az, range);
       return std::tan(elevation) < end ? std::atan(end) : std::numeric_limits<double>::quiet_NaN();
     }
     const unsigned* tri = mesh_.indices + 3 * hit.hit.primID;
@@ -306,13 +321,8 @@ class RaycastEngine final : public HorizonEngine {
 
   void compute_window(const Terrain& terrain, const Window& window, HorizonField& out,
                       ProgressCounter& progress) const override {
-    DevicePtr device(rtcNewDevice(nullptr));
-    if (!device) throw Error("cannot start Embree");
-    if (!rtcGetDeviceProperty(device.get(), RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED)) {
-      throw Error("this Embree was built without filter functions, which the ray cast needs");
-    }
     std::string embree_failure;
-    rtcSetDeviceErrorFunction(device.get(), embree_error, &embree_failure);
+    DevicePtr device = new_device(embree_failure);
     TerrainMesh upper(device.get(), terrain, 1.0);
     std::unique_ptr<TerrainMesh> lower;
     if (p_.lower) lower = std::make_unique<TerrainMesh>(device.get(), terrain, -1.0);
@@ -339,23 +349,25 @@ class RaycastEngine final : public HorizonEngine {
           const int col = window.col0 + wc;
           if (!terrain.valid(col, row)) continue;
           const std::size_t cell_index = out.cell(wc, wr);
-          const double z = terrain.heights(col, row);
+          const Eye eye = upper.cell_eye(col, row);
           for (int k = 0; k < n; ++k) {
+            const double first = upper.first_crossing_slope(col, row, sin_k[k], cos_k[k]);
             out.upper_at(cell_index, k) =
-                static_cast<float>(climb_horizon(upper, col, row, z, sin_k[k], cos_k[k], reach_k[k]));
+                static_cast<float>(climb_horizon(upper, eye, sin_k[k], cos_k[k], reach_k[k], first));
             if (lower) {
-              out.lower_at(cell_index, k) =
-                  static_cast<float>(-climb_horizon(*lower, col, row, -z, sin_k[k], cos_k[k], reach_k[k]));
+              const double lower_first = lower->first_crossing_slope(col, row, sin_k[k], cos_k[k]);
+              out.lower_at(cell_index, k) = static_cast<float>(
+                  -climb_horizon(*lower, lower->cell_eye(col, row), sin_k[k], cos_k[k], reach_k[k], lower_first));
             }
           }
-          if (p_.rays > 0) monte_carlo_svf(upper, terrain, col, row, z, range, out, cell_index);
+          if (p_.rays > 0) monte_carlo_svf(upper, terrain, col, row, range, out, cell_index);
         }
         progress.advance(window.cols);
       }
     });
   }
 
- private:
+  // Also for point queries (raycast_point_horizons).
   static constexpr double kPrecision = 1e-5;  // radians: rays this far above terrain graze nothing
   static constexpr int kClimbs = 6;           // climbing rays before the bracket is halved instead
 
@@ -369,13 +381,13 @@ class RaycastEngine final : public HorizonEngine {
   // and rays that must find their nearest hit cost more than rays that stop at any. Over long smooth
   // slopes, where a climb gains only a triangle, the rays after the first kClimbs halve the bracket:
   // on a 1 m lidar DEM 13 rays per direction, and no faster than the bisection.
-  static double climb_horizon(const TerrainMesh& mesh, int col, int row, double z, double s, double c, double range) {
-    if (!(range > 0.0)) return 0.0;  // no crossing within the radius: nothing in range
-    const double first = mesh.first_crossing_slope(col, row, s, c);
+  // `first`: the slope to the first crossing for a cell's eye (first_crossing_slope), -inf for a point's.
+  static double climb_horizon(const TerrainMesh& mesh, const Eye& eye, double s, double c, double range, double first) {
+    if (!(range > 0.0)) return 0.0;            // no crossing within the radius: nothing in range
     double lo = -0.5 * M_PI, hi = 0.5 * M_PI;  // the horizon is in [lo, hi): lo seen (or the nadir), hi open
     bool blocked = false;
     auto probe = [&](double elevation) {
-      const double top = mesh.blocking_angle(col, row, z, s, c, elevation, range, first);
+      const double top = mesh.blocking_angle(eye, s, c, elevation, range, first);
       if (std::isnan(top)) {
         hi = elevation;
       } else {
@@ -397,8 +409,10 @@ class RaycastEngine final : public HorizonEngine {
     return blocked ? lo : 0.0;
   }
 
-  void monte_carlo_svf(const TerrainMesh& mesh, const Terrain& t, int col, int row, double z, double range,
-                       HorizonField& out, std::size_t cell_index) const {
+ private:
+  void monte_carlo_svf(const TerrainMesh& mesh, const Terrain& t, int col, int row, double range, HorizonField& out,
+                       std::size_t cell_index) const {
+    const Eye eye = mesh.cell_eye(col, row);
     // Stratified cosine-weighted directions: strata in (u, v) map through Malley's method.
     const int side = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(p_.rays))));
     const int total = side * side;
@@ -415,7 +429,8 @@ class RaycastEngine final : public HorizonEngine {
         const double elevation = std::acos(sin_zenith);  // elevation = 90° - zenith
         const double sa = std::sin(azimuth), ca = std::cos(azimuth);
         const double reach = mesh.reach(sa, ca, range);
-        open += !(reach > 0.0) || !mesh.occluded(col, row, z, sa, ca, elevation, reach);
+        open += !(reach > 0.0) ||
+                !mesh.occluded(eye, sa, ca, elevation, reach, mesh.first_crossing_slope(col, row, sa, ca));
       }
     }
     const double p = static_cast<double>(open) / total;
@@ -428,6 +443,34 @@ class RaycastEngine final : public HorizonEngine {
 };
 
 }  // namespace
+
+void raycast_point_horizons(const Terrain& extended, const std::vector<EyePoint>& eyes, int directions,
+                            double sector_rotation, double radius, std::vector<float>& out, ProgressCounter* progress) {
+  std::string embree_failure;
+  DevicePtr device = new_device(embree_failure);
+  const TerrainMesh mesh(device.get(), extended, 1.0);
+  if (!embree_failure.empty()) throw Error(embree_failure);
+  const double range = radius > 0.0 ? radius : std::numeric_limits<double>::infinity();
+  const std::size_t n = eyes.size();
+  out.assign(n * directions, std::numeric_limits<float>::quiet_NaN());
+  // A point's eye is above the surface, off every vertex: no triangle to ignore, no first crossing
+  // to judge by hand, and with a radius its rays stop at the radius itself (the march for points
+  // stops at the last crossing within it).
+  constexpr double kNoFirstSlope = -std::numeric_limits<double>::infinity();
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      if (std::isnan(eyes[i].z)) continue;
+      const Eye eye{eyes[i].col, eyes[i].row, eyes[i].z, kNoVertex};
+      for (int k = 0; k < directions; ++k) {
+        const double az = sector_rotation + sector_azimuth(k, directions);
+        const double s = std::sin(az), c = std::cos(az);
+        out[i * directions + k] =
+            static_cast<float>(RaycastEngine::climb_horizon(mesh, eye, s, c, range, kNoFirstSlope));
+      }
+      if (progress) progress->advance(1);
+    }
+  });
+}
 
 std::unique_ptr<HorizonEngine> make_raycast_engine(const HorizonParams& params) {
   return std::make_unique<RaycastEngine>(params);

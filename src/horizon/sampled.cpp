@@ -19,7 +19,7 @@ struct FixedDistances {
   static constexpr bool kDenseSteps = false;
   std::vector<double> distance, inverse;
   template <class Visit>
-  void walk(double, double, double max_distance, double curvature, Visit&& visit) const {
+  void walk(double, double, double, double, double max_distance, double curvature, Visit&& visit) const {
     const std::size_t n = distance.size();
     for (std::size_t j = 0; j < n && distance[j] <= max_distance; ++j) {
       const double next = visit(distance[j], inverse[j], curvature * distance[j] * distance[j]);

@@ -1,5 +1,6 @@
 #include "skyview/horizon/surface_mesh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
@@ -108,6 +109,21 @@ SurfaceMesh surface_mesh(const Terrain& t, double sign, double skirt_drop) {
   mesh.surface_triangles = idx.size() / 3;
   mesh.skirt_vertices = hang_skirts(t, sign, skirt_drop, idx);
   return mesh;
+}
+
+double surface_height(const Terrain& t, double x, double y, double sign) {
+  const int x0 = std::min(static_cast<int>(x), std::max(0, t.width() - 2));
+  const int y0 = std::min(static_cast<int>(y), std::max(0, t.height() - 2));
+  const double fx = x - x0, fy = y - y0;
+  const int x1 = std::min(x0 + 1, t.width() - 1), y1 = std::min(y0 + 1, t.height() - 1);
+  const double za = t.heights(x0, y0), zb = t.heights(x1, y0), zd = t.heights(x0, y1), ze = t.heights(x1, y1);
+  // Along a grid line only its two ends count.
+  if (fy == 0.0) return fx == 0.0 ? za : za + fx * (zb - za);
+  if (fx == 0.0) return za + fy * (zd - za);
+  if (quad_splits_along_ae(za, zb, zd, ze, sign)) {
+    return fx >= fy ? za + fx * (zb - za) + fy * (ze - zb) : za + fy * (zd - za) + fx * (ze - zd);
+  }
+  return fx + fy <= 1.0 ? za + fx * (zb - za) + fy * (zd - za) : ze + (1 - fx) * (zd - ze) + (1 - fy) * (zb - ze);
 }
 
 }  // namespace skyview

@@ -38,6 +38,12 @@ inline bool quad_splits_along_ae(double za, double zb, double zd, double ze, dou
   return sign * (za + ze) <= sign * (zb + zd);
 }
 
+// The mesh's height (in the terrain's own sign: heights, not heights times `sign`) at pixel
+// position (x, y) inside the buffer, from the triangle holding it as surface_mesh splits its quad
+// (in a half quad, the valid triangle's); along a grid line only its two ends count. NaN where that
+// triangle has a nodata corner.
+double surface_height(const Terrain& terrain, double x, double y, double sign = 1.0);
+
 // The mesh of `terrain`'s heights times `sign` (-1: the lowest angles' negated heights, whose quads
 // may split along the other diagonal and whose skirts hang upwards), its skirts hanging
 // `skirt_drop` (height units) below their edges, kSkirtOut of a cell out.
