@@ -1,0 +1,36 @@
+#pragma once
+// One input of load_scene, opened: what it is, the CRS it declares and where it lies, so that the
+// scene's CRS and origin can be chosen before any mesh is made; then its meshes. One reader per
+// format, each in its own file; load_scene (load_scene.cpp) is the one entry point that picks them.
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "scene/scene_assembly.h"
+#include "skyview/scene/scene.h"
+
+namespace skyview {
+
+class SceneInput {
+ public:
+  virtual ~SceneInput() = default;
+  // "CityJSON 2.0", "CityGML", "raster (GTiff)", "footprints (GPKG)", "mesh (glTF2)".
+  virtual std::string format() const = 0;
+  // The CRS the file states, as OGRSpatialReference::SetFromUserInput reads it (WKT, EPSG:n, an
+  // OGC URN or URL); empty where it states none (a mesh, a CityJSON file without referenceSystem).
+  virtual std::string declared_crs() const = 0;
+  // Its bounds in its own coordinates (for the scene's origin); none when it holds no coordinates.
+  virtual std::optional<std::array<Vec3d, 2>> extent() const = 0;
+  // Rasters give the ground that footprints stand on, so they are added first.
+  virtual bool is_ground() const { return false; }
+  // Makes its meshes and hands them to `scene` (begin_input has been called).
+  virtual void add_to(SceneAssembly& scene) = 0;
+};
+
+std::unique_ptr<SceneInput> open_cityjson(const std::string& path, const SceneLoadOptions& options);
+// The same for a document already in memory (the fuzz target's way in); `name` stands for the path.
+std::unique_ptr<SceneInput> open_cityjson_text(const std::string& text, const std::string& name,
+                                               const SceneLoadOptions& options);
+
+}  // namespace skyview
