@@ -44,6 +44,8 @@ class FootprintLayer {
   FootprintLayer(const std::string& path, const FootprintFields& fields);
 
   const std::string& path() const { return path_; }
+  // GDAL's short name of the format ("GPKG", "ESRI Shapefile").
+  std::string driver_name() const { return dataset_->GetDriverName(); }
   OGRLayer& layer() { return *layer_; }
   const OGRSpatialReference* crs() const { return layer_->GetSpatialRef(); }
   // What gave the fields their unit ("metres (...)", "--footprint-z-scale"); empty without fields.

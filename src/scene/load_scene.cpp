@@ -1,6 +1,8 @@
 // load_scene: the one entry point of the scene readers. It tells each input's format (by content,
 // then by what GDAL and Assimp open), chooses the scene's CRS and origin, and hands every input its
 // transform into them.
+#include <gdal_priv.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +13,7 @@
 #include "scene/scene_input.h"
 #include "skyview/core/error.h"
 #include "skyview/core/lowercase.h"
+#include "skyview/raster/raster_io.h"
 #include "skyview/scene/scene.h"
 
 namespace skyview {
@@ -63,6 +66,15 @@ std::unique_ptr<SceneInput> open_input(const std::string& path, const SceneLoadO
   }
   const std::string_view start = content_start(head);
   if (is_cityjson(path, start)) return open_cityjson(path, options);
+  // GDAL next: rasters are DSMs, vector layers footprints.
+  init_gdal();
+  CPLPushErrorHandler(CPLQuietErrorHandler);
+  GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  CPLPopErrorHandler();
+  const bool raster = ds && ds->GetRasterCount() > 0, vector = ds && ds->GetLayerCount() > 0;
+  ds.reset();
+  if (raster) return open_dsm(path, options);
+  if (vector) return open_footprints(path, options);
   throw Error("cannot tell what '" + path +
               "' is: not CityJSON, CityGML, a GDAL raster or vector layer, nor a mesh format Assimp reads");
 }
@@ -147,7 +159,7 @@ Scene load_scene(const std::vector<std::string>& inputs, const SceneLoadOptions&
   SceneAssembly assembly(scene);
   for (const bool ground : {true, false}) {
     for (std::size_t i = 0; i < n; ++i) {
-      if (opened[i]->is_ground() != ground) continue;
+      if (!opened[i] || opened[i]->is_ground() != ground) continue;
       SceneInputReport report;
       report.path = inputs[i];
       report.format = opened[i]->format();

@@ -102,7 +102,7 @@ void SceneAssembly::tally(std::map<std::string, Tally>& tallies, std::int64_t co
                           const std::string& object) {
   Tally& t = tallies[why];
   t.count += count;
-  if (t.examples.size() < kExamples && (t.examples.empty() || t.examples.back() != object)) {
+  if (!object.empty() && t.examples.size() < kExamples && (t.examples.empty() || t.examples.back() != object)) {
     t.examples.push_back(object);
   }
 }

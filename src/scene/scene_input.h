@@ -28,6 +28,11 @@ class SceneInput {
   virtual void add_to(SceneAssembly& scene) = 0;
 };
 
+// Footprint layers (the first layer of any OGR vector source) extruded to prisms.
+std::unique_ptr<SceneInput> open_footprints(const std::string& path, const SceneLoadOptions& options);
+// DSM rasters (any GDAL raster with a geotransform), meshed as the ray cast meshes them.
+std::unique_ptr<SceneInput> open_dsm(const std::string& path, const SceneLoadOptions& options);
+
 std::unique_ptr<SceneInput> open_cityjson(const std::string& path, const SceneLoadOptions& options);
 // The same for a document already in memory (the fuzz target's way in); `name` stands for the path.
 std::unique_ptr<SceneInput> open_cityjson_text(const std::string& text, const std::string& name,
