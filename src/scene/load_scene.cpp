@@ -66,6 +66,9 @@ std::unique_ptr<SceneInput> open_input(const std::string& path, const SceneLoadO
   }
   const std::string_view start = content_start(head);
   if (is_cityjson(path, start)) return open_cityjson(path, options);
+  if (!start.empty() && start.front() == '<' && start.find("CityModel") != std::string_view::npos) {
+    return open_citygml(path, head, options);
+  }
   // GDAL next: rasters are DSMs, vector layers footprints.
   init_gdal();
   CPLPushErrorHandler(CPLQuietErrorHandler);

@@ -33,6 +33,12 @@ std::unique_ptr<SceneInput> open_footprints(const std::string& path, const Scene
 // DSM rasters (any GDAL raster with a geotransform), meshed as the ray cast meshes them.
 std::unique_ptr<SceneInput> open_dsm(const std::string& path, const SceneLoadOptions& options);
 
+// CityGML 1.0 and 2.0 through libcitygml; `head` holds the file's first bytes (its version).
+std::unique_ptr<SceneInput> open_citygml(const std::string& path, const std::string& head,
+                                         const SceneLoadOptions& options);
+std::unique_ptr<SceneInput> open_citygml_text(const std::string& text, const std::string& name,
+                                              const SceneLoadOptions& options);
+
 std::unique_ptr<SceneInput> open_cityjson(const std::string& path, const SceneLoadOptions& options);
 // The same for a document already in memory (the fuzz target's way in); `name` stands for the path.
 std::unique_ptr<SceneInput> open_cityjson_text(const std::string& text, const std::string& name,
