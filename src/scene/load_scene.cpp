@@ -78,6 +78,7 @@ std::unique_ptr<SceneInput> open_input(const std::string& path, const SceneLoadO
   ds.reset();
   if (raster) return open_dsm(path, options);
   if (vector) return open_footprints(path, options);
+  if (mesh_format_known(path)) return open_mesh_file(path, options);
   throw Error("cannot tell what '" + path +
               "' is: not CityJSON, CityGML, a GDAL raster or vector layer, nor a mesh format Assimp reads");
 }

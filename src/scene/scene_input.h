@@ -39,6 +39,13 @@ std::unique_ptr<SceneInput> open_citygml(const std::string& path, const std::str
 std::unique_ptr<SceneInput> open_citygml_text(const std::string& text, const std::string& name,
                                               const SceneLoadOptions& options);
 
+// Mesh files through Assimp: whether it reads the extension, and the reader.
+bool mesh_format_known(const std::string& path);
+std::unique_ptr<SceneInput> open_mesh_file(const std::string& path, const SceneLoadOptions& options);
+// From bytes in memory, `extension` (without the dot) telling the format (the fuzz target's way in).
+std::unique_ptr<SceneInput> open_mesh_bytes(const std::string& bytes, const std::string& extension,
+                                            const std::string& name, const SceneLoadOptions& options);
+
 std::unique_ptr<SceneInput> open_cityjson(const std::string& path, const SceneLoadOptions& options);
 // The same for a document already in memory (the fuzz target's way in); `name` stands for the path.
 std::unique_ptr<SceneInput> open_cityjson_text(const std::string& text, const std::string& name,
