@@ -14,7 +14,7 @@ namespace {
 
 // CLI11 reads "-of" as "-o f"; GDAL users type single-dash long options, so map them.
 std::vector<std::string> gdal_style_arguments(int argc, char** argv) {
-  static const char* long_single_dash[] = {"-of", "-co", "-te", "-tr", "-t_srs", "-ot", "-srcnodata", "-dstnodata"};
+  static const char* long_single_dash[] = {"-of", "-co", "-te", "-tr", "-t_srs", "-s_srs", "-ot", "-srcnodata", "-dstnodata"};
   std::vector<std::string> args;
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];

@@ -127,11 +127,14 @@ Scene load_scene(const std::vector<std::string>& inputs, const SceneLoadOptions&
       }
     }
     double lon = std::numeric_limits<double>::quiet_NaN(), lat = lon;
-    if (target->IsGeographic()) {
+    if (target->IsGeographic()) {  // where the data lie, for the UTM zone the message suggests
       for (std::size_t i = 0; i < n && std::isnan(lon); ++i) {
-        if (const auto e = opened[i]->extent(); e && crs[i] && crs[i]->IsSame(&*target)) {
-          lon = 0.5 * ((*e)[0][0] + (*e)[1][0]), lat = 0.5 * ((*e)[0][1] + (*e)[1][1]);
-        }
+        const auto e = opened[i]->extent();
+        if (!e) continue;
+        double x = 0.5 * ((*e)[0][0] + (*e)[1][0]), y = 0.5 * ((*e)[0][1] + (*e)[1][1]);
+        TransformPtr t(OGRCreateCoordinateTransformation(&*crs[i], &*target));
+        if (!crs[i]->IsSame(&*target) && (!t || !t->Transform(1, &x, &y))) continue;
+        lon = x, lat = y;
       }
     }
     require_projected_metres(*target, target_what, lon, lat);
@@ -155,7 +158,7 @@ Scene load_scene(const std::vector<std::string>& inputs, const SceneLoadOptions&
     double c[3] = {0.5 * ((*e)[0][0] + (*e)[1][0]), 0.5 * ((*e)[0][1] + (*e)[1][1]), 0.0};
     if (to_scene[i] && !to_scene[i]->Transform(1, &c[0], &c[1], &c[2])) continue;
     if (!std::isfinite(c[0]) || !std::isfinite(c[1])) continue;
-    scene.origin = {std::round(c[0]), std::round(c[1]), 0.0};
+    scene.origin = {std::round(c[0]) + 0.0, std::round(c[1]) + 0.0, 0.0};  // (+ 0.0: no -0)
     break;
   }
 

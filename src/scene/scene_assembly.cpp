@@ -102,9 +102,9 @@ void SceneAssembly::tally(std::map<std::string, Tally>& tallies, std::int64_t co
                           const std::string& object) {
   Tally& t = tallies[why];
   t.count += count;
-  if (!object.empty() && t.examples.size() < kExamples && (t.examples.empty() || t.examples.back() != object)) {
-    t.examples.push_back(object);
-  }
+  if (object.empty() || (!t.examples.empty() && t.examples.back() == object)) return;
+  ++t.objects;
+  if (t.examples.size() < kExamples) t.examples.push_back(object);
 }
 
 void SceneAssembly::skip(const std::string& object, const std::string& why) {
@@ -132,7 +132,7 @@ void SceneAssembly::end_input() {
   auto examples = [](const Tally& t) {
     std::string s;
     for (const std::string& e : t.examples) s += (s.empty() ? " (" : ", ") + ("'" + e + "'");
-    return s.empty() ? s : s + (t.count > static_cast<std::int64_t>(t.examples.size()) ? ", ...)" : ")");
+    return s.empty() ? s : s + (t.objects > static_cast<std::int64_t>(t.examples.size()) ? ", ...)" : ")");
   };
   for (const auto& [why, t] : skipped_) {
     warn(file + tally_text(t.count, "object") + " skipped, " + why + examples(t));

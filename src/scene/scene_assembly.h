@@ -62,7 +62,8 @@ class SceneAssembly {
  private:
   struct Tally {
     std::int64_t count = 0;
-    std::vector<std::string> examples;  // the first few names
+    std::int64_t objects = 0;           // distinct objects counted (in a row)
+    std::vector<std::string> examples;  // the first few of them
   };
   Scene& scene_;
   OGRCoordinateTransformation* to_scene_ = nullptr;
