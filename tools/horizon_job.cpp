@@ -6,11 +6,10 @@
 
 #include <optional>
 
-#include "skyview/sky_view/accuracy_choice.h"
 #include "skyview/core/error.h"
 #include "skyview/core/number_text.h"
-#include "skyview/sky_view/sky_view.h"
 #include "skyview/core/version.h"
+#include "skyview/sky_view/sky_view.h"
 
 namespace skyview::cli {
 
@@ -83,152 +82,37 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
 
 namespace {
 
-// An option the run would not use is refused: a batch job that asks for --rays 4096 with the
-// sweep, or for --max-error and --directions 64 together, would otherwise get an answer to
-// another question than it asked, without a word.
-// `method` is the one the run uses (--max-error's choice, if given).
-void check_options_apply(const HorizonJobOptions& o, const std::string& method) {
-  if (!o.app) return;
-  if (o.max_error >= 0.0) {
-    for (const char* name : {"--method", "--directions", "--samples", "--far-lines", "--radius", "--azimuths"}) {
-      refuse_unused(*o.app, name, false,
-                    "runs without --max-error, which chooses --method, --directions, --samples, --far-lines, "
-                    "--radius and --azimuths itself");
-    }
-  }
-  if (o.azimuths == "grid-lines" && o.app->count("--azimuth-origin") > 0 && o.azimuth_origin != "grid")
-    throw Error("--azimuths grid-lines starts on grid north: leave out --azimuth-origin " + o.azimuth_origin);
-  const std::string used_by = " (this run uses " + method +
-                              (o.params.radius > 0.0 ? " with --radius " + number_text(o.params.radius) : "") + ")";
-  refuse_unused(*o.app, "--rays", method == "raycast", "--method raycast" + used_by);
-  refuse_unused(*o.app, "--seed", method == "sampled", "--method sampled" + used_by);
-  // With a radius the sweep reads every crossing within it: no near steps to count.
-  refuse_unused(*o.app, "--samples", method == "sampled" || (method == "sweep" && !(o.params.radius > 0.0)),
-                "--method sampled, or sweep at unlimited radius" + used_by);
-  refuse_unused(*o.app, "--refraction", method != "raycast" && o.params.curvature != "off",
-                "runs with Earth curvature (--curvature on or auto; the ray cast models none)" + used_by);
-  refuse_unused(*o.app, "--far-lines", method == "sweep" && !(o.params.radius > 0.0),
-                "--method sweep at unlimited radius" + used_by);
-  // Along the grid's lines the sweep finds every direction exactly: no near steps, no far lines.
-  if (o.azimuths == "grid-lines" && method == "sweep" && !(o.params.radius > 0.0)) {
-    for (const char* name : {"--samples", "--far-lines"})
-      refuse_unused(*o.app, name, false, "uniform --azimuths (along the grid's lines every direction is exact)");
-  }
-}
-
-void check_edge_mode(const HorizonJob& job) {
-  if (job.edge == EdgeMode::nodata && std::isinf(job.engine->radius())) {
-    throw Error(std::string("--edge nodata blanks the cells whose search reaches the raster's edge, which with an ") +
-                (job.choice ? "unlimited radius (what --max-error chose: it sets --method, --directions, --samples, "
-                              "--far-lines and --radius) is every cell; choose the method and --radius yourself"
-                            : "unlimited radius is every cell; give --radius"));
-  }
-}
-
-// --edge nodata with a radius whose circle leaves the raster from every cell would write nodata
-// only: refused like the unlimited radius (found from the centre outwards, so a raster where most
-// cells fit stops at once).
-void check_edge_leaves_cells(const HorizonJob& job, double radius_asked) {
-  if (job.edge != EdgeMode::nodata) return;
-  const Terrain& t = job.terrain;
-  const double radius = job.engine->radius();
-  if (!search_circle_leaves_raster(t, t.width() / 2, t.height() / 2, radius)) return;
-  for (int r = 0; r < t.height(); ++r) {
-    for (int c = 0; c < t.width(); ++c) {
-      if (t.valid(c, r) && !search_circle_leaves_raster(t, c, r, radius)) return;
-    }
-  }
-  throw Error("--edge nodata blanks the cells whose search reaches the raster's edge, which with --radius " +
-              number_text(radius_asked) +
-              " is every cell of this raster; give a smaller --radius or leave --edge open");
-}
-
-// A radius shorter than a cell reaches no grid line from any cell centre, where the shared surface
-// can rise: every horizon would be open. RVT and SAGA count their radius in cells; here it is metres.
-void check_radius_reaches_a_neighbour(const HorizonJob& job, double radius_asked) {
-  const double radius = job.engine->radius();
-  if (!std::isfinite(radius)) return;
-  const double cell = raster_centre_jacobian(job.terrain).min_cell_size();
-  if (radius >= cell) return;
-  throw Error("--radius " + number_text(radius_asked) + " m reaches no neighbouring cell (the shorter cell side is " +
-              number_text(cell) + " m), so every horizon would be open; the radius is in metres, not cells");
-}
-
-// The metadata of the method that runs (and of --max-error's choice), replacing the last one's.
-void record_method(HorizonJob& job, double max_error) {
-  auto& m = job.metadata;
-  for (const std::string& key : job.method_keys) m.erase(key);
-  std::map<std::string, std::string> add = job.engine->describe();
-  add["CITATION"] = std::string(job.engine->citation());
-  // What ran, not what was asked: auto resolves on the raster's extent and the radius.
-  const bool curved = job.engine->curvature_coefficient(job.terrain) > 0.0;
-  add["CURVATURE"] = std::string(curved ? "on" : "off") + (job.engine->params().curvature == "auto" ? " (auto)" : "") +
-                     (job.engine->name() == "raycast" ? " (the ray cast has none)" : "");
-  if (curved) add["REFRACTION"] = number_text(job.engine->params().refraction);
-  // The directions too: --max-error's next choice may run along the grid's lines or not.
-  job.sector_rotation = direction_set_rotation(job.engine->params(), job.terrain);
-  job.sectors = direction_set(job.engine->params(), job.terrain);
-  const bool grid = direction_set_origin(job.engine->params()) == AzimuthOrigin::grid;
-  add["AZIMUTH_ORIGIN"] =
-      grid ? "grid: sector 0 centred on grid north at the raster's centre" : "north: sector 0 centred on true north";
-  add["AZIMUTHS"] = job.engine->params().spacing == AzimuthSpacing::grid_lines
-                        ? "grid-lines: along the grid's columns, rows, diagonals and slope-1/2 lines, each weighted by "
-                          "its share of the circle (band metadata SECTOR_WIDTH_DEG in skyview horizon)"
-                        : "uniform: every 360/N degrees";
-  add["SECTOR_ROTATION_DEG"] = number_text(job.sector_rotation * 180.0 / M_PI);
-  if (job.choice) {
-    add["MAX_ERROR_REQUESTED"] = number_text(max_error);
-    add["MAX_ERROR_CHOICE"] = describe_choice(*job.choice);
-    add["MAX_ERROR_CALIBRATED_P99"] = number_text(job.choice->entry.worst_p99);
-    add["MAX_ERROR_BASIS"] =
-        "worst 99th-percentile |svf error| against the continuous svf (exact horizons in 1024 sectors at 1000 "
-        "random cells) over the calibration rasters of docs/benchmarks.md, timed with sectors from grid north";
-  }
-  job.method_keys.clear();
-  for (auto& [k, v] : add) {
-    job.method_keys.push_back(k);
-    m[k] = std::move(v);
-  }
-}
+// Every option that the library's checks refuse when the run would not use it.
+const char* const kCheckedOptions[] = {"--method",   "--directions", "--samples", "--far-lines",  "--radius",
+                                       "--azimuths", "--rays",       "--seed",    "--refraction", "--azimuth-origin"};
 
 }  // namespace
 
-std::string describe_choice(const AccuracyChoice& c) {
-  if (c.entry.spacing == AzimuthSpacing::grid_lines)
-    return c.method + " with " + std::to_string(c.entry.directions) + " directions along the grid's lines";
-  return c.method + " with " + std::to_string(c.entry.directions) + " directions" +
-         (c.method == "sampled" ? " and " + std::to_string(c.entry.samples) + " samples" : "") +
-         (c.method == "sweep"
-              ? ", " + std::to_string(c.entry.samples) + " exact near steps and " + std::to_string(c.entry.far_lines) +
-                    " far line" + (c.entry.far_lines == 1 ? "" : "s")
-              : "");
+HorizonRequest horizon_request(const HorizonJobOptions& o) {
+  HorizonRequest r;
+  r.method = o.method;
+  r.edge = o.edge;
+  r.max_error = o.max_error;
+  r.azimuth_origin = o.azimuth_origin;
+  r.azimuths = o.azimuths;
+  r.params = o.params;
+  if (o.app) {
+    for (const char* name : kCheckedOptions) {
+      if (o.app->count(name) > 0) r.given.insert(name);
+    }
+  }
+  return r;
 }
 
 void use_choice(HorizonJob& job, const AccuracyChoice& choice, double max_error) {
-  job.choice = choice;
-  job.engine = make_horizon_engine(choice.method, choice.params);
-  check_edge_mode(job);
-  record_method(job, max_error);
+  skyview::use_choice(job, choice, max_error, job.terrain);
 }
 
 HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& command,
                                const std::vector<std::string>& more_outputs) {
+  const HorizonRequest request = horizon_request(o);
   HorizonJob job;
-  job.edge = o.edge == "nodata" ? EdgeMode::nodata : EdgeMode::open;
-  std::string method = o.method;
-  HorizonParams params = o.params;
-  params.azimuth_origin = azimuth_origin_named(o.azimuth_origin);
-  params.spacing = azimuth_spacing_named(o.azimuths);
-  std::optional<AccuracyChoice> choice;
-  if (o.max_error >= 0.0) {
-    choice = choose_for_max_error(o.max_error, params);
-    method = choice->method;
-    params = choice->params;
-  }
-  check_options_apply(o, method);
-  job.choice = choice;
-  job.engine = make_horizon_engine(method, params);
-  check_edge_mode(job);
+  static_cast<HorizonSetup&>(job) = plan_horizon(request);
   // The options first (a user fixing one error should not meet another, older one next), then the
   // outputs, all before the input is read; svf checks its bands' format again.
   std::vector<std::string> outputs{o.output};
@@ -257,22 +141,9 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   m["SOURCE_BAND"] = std::to_string(o.band);
   m["Z_SCALE"] = number_text(report.z_scale);
   m["HEIGHT_UNIT"] = report.height_unit;
-  check_edge_leaves_cells(job, params.radius);
-  check_radius_reaches_a_neighbour(job, params.radius);
-  // Auto decides only now, on the raster's reach: a refraction given for rasters where curvature
-  // counts is accepted, but said to be unused here (even under -q: the user asked for it).
-  if (o.app && o.app->count("--refraction") > 0 && job.engine->params().curvature == "auto" &&
-      !(job.engine->curvature_coefficient(job.terrain) > 0.0)) {
-    std::fprintf(stderr,
-                 "Warning: --refraction has no effect: --curvature auto left Earth curvature off on '%s' (under "
-                 "0.01 degrees at its reach)\n",
-                 o.input.c_str());
-  }
-  m["GROUND_FRAME"] = job.terrain.frame.description();
-  m["EDGE_MODE"] = o.edge;
-  record_method(job, o.max_error);
-  m["NODATA_POLICY"] = "nodata cells give nodata; nodata inside a search path does not occlude";
-  m["ANGLE_CONVENTION"] = "elevation above the horizontal; azimuth clockwise from true north";
+  fit_horizon(job, request, job.terrain);
+  for (const std::string& w : job.warnings) std::fprintf(stderr, "Warning: %s ('%s')\n", w.c_str(), o.input.c_str());
+  job.warnings.clear();
   return job;
 }
 
@@ -281,15 +152,6 @@ void with_progress(const HorizonJob& job, const std::function<void(ProgressCount
   progress.set_total(static_cast<std::uint64_t>(job.terrain.width()) * job.terrain.height());
   ProgressReporter reporter(progress, job.quiet);
   work(progress);
-}
-
-void record_edge_cells(HorizonJob& job, std::int64_t edge_cells) {
-  job.metadata["EDGE_CELLS"] = std::to_string(edge_cells);
-  if (edge_cells > 0) {
-    job.metadata["EDGE_NOTE"] =
-        std::to_string(edge_cells) + " cells have search circles leaving the raster; " +
-        (job.edge == EdgeMode::open ? "terrain beyond the edge was taken as non-occluding" : "they were set to nodata");
-  }
 }
 
 }  // namespace skyview::cli

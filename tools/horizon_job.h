@@ -9,9 +9,10 @@
 #include <vector>
 
 #include "command.h"
-#include "skyview/sky_view/accuracy_choice.h"
 #include "skyview/horizon/horizon_engine.h"
 #include "skyview/raster/raster_io.h"
+#include "skyview/sky_view/accuracy_choice.h"
+#include "skyview/sky_view/horizon_request.h"
 #include "skyview/sky_view/sky_view.h"
 
 namespace skyview::cli {
@@ -33,33 +34,24 @@ struct HorizonJobOptions {
 
 void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o);
 
-struct HorizonJob {
+// The input read and the engine set up (HorizonSetup: engine, edge, choice, sectors, metadata).
+struct HorizonJob : HorizonSetup {
   Terrain terrain;
-  std::unique_ptr<HorizonEngine> engine;
-  EdgeMode edge = EdgeMode::open;
-  std::map<std::string, std::string> metadata;  // run parameters for the output
   bool quiet = false;
-  std::optional<AccuracyChoice> choice;  // --max-error's, when given
-  double sector_rotation = 0;            // of the direction set (radians; direction_set_rotation)
-  DirectionSet sectors;                  // its azimuths from sector_rotation, and their weights
-  std::vector<std::string> method_keys;  // the metadata keys that describe the method
 };
+
+// The options as the library states them, with those given on the command line marked.
+HorizonRequest horizon_request(const HorizonJobOptions& o);
 
 // Reads the input, builds the engine and records the run's parameters; computes nothing yet.
 // `more_outputs` (a preview) are refused with the output where they would replace an input.
 HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& command,
                                const std::vector<std::string>& more_outputs = {});
 
-// "sweep with 64 directions, 16 exact near steps and 1 far line"
-std::string describe_choice(const AccuracyChoice& choice);
-
 // Runs with another of --max-error's choices from now on: its engine and its metadata.
 void use_choice(HorizonJob& job, const AccuracyChoice& choice, double max_error);
 
 // Runs `work` with progress over the job's cells on stderr (unless the job is quiet).
 void with_progress(const HorizonJob& job, const std::function<void(ProgressCounter&)>& work);
-
-// EDGE_CELLS (and, where any, EDGE_NOTE: what --edge did with them) into the job's metadata.
-void record_edge_cells(HorizonJob& job, std::int64_t edge_cells);
 
 }  // namespace skyview::cli

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <cstdint>
 
-#include "skyview/raster/georeference.h"
 #include "skyview/core/grid.h"
+#include "skyview/raster/georeference.h"
 #include "skyview/raster/ground_frame.h"
 
 namespace skyview {

@@ -7,10 +7,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "skyview/sky_view/error_stats.h"
 #include "skyview/core/grid.h"
 #include "skyview/horizon/horizon_engine.h"
 #include "skyview/raster/terrain.h"
+#include "skyview/sky_view/error_stats.h"
 
 namespace skyview {
 
