@@ -29,7 +29,7 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // libcitygml's messages, kept for our one-line errors and warnings instead of its own printing.
-class KeptMessages : public citygml::CityGMLLogger {
+class KeptMessages final : public citygml::CityGMLLogger {
  public:
   KeptMessages() : CityGMLLogger(LOGLEVEL::LL_WARNING) {}
   void log(LOGLEVEL level, const std::string& message, const char*, int) const override {

@@ -19,15 +19,6 @@
 namespace skyview {
 namespace {
 
-// The first `bytes` of a file, for telling formats apart by content.
-std::string file_start(const std::string& path, std::size_t bytes) {
-  std::ifstream in(path, std::ios::binary);
-  std::string s(bytes, '\0');
-  in.read(s.data(), static_cast<std::streamsize>(bytes));
-  s.resize(static_cast<std::size_t>(in.gcount()));
-  return s;
-}
-
 // The text after a UTF-8 byte order mark and white space.
 std::string_view content_start(std::string_view s) {
   if (s.substr(0, 3) == "\xEF\xBB\xBF") s.remove_prefix(3);

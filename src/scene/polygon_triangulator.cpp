@@ -91,6 +91,20 @@ bool PolygonTriangulator::triangulate(const std::vector<Vec3d>& points,
     triangles.push_back({outer[0], outer[1], outer[2]});
     return true;
   }
+  if (clean.size() == 1 && outer.size() == 4) {  // walls: a convex quad splits along either diagonal
+    bool convex = true;
+    for (int k = 0; k < 4 && convex; ++k) {
+      const Vec3d& a = points[outer[k]];
+      const Vec3d& b = points[outer[(k + 1) % 4]];
+      const Vec3d& c = points[outer[(k + 2) % 4]];
+      convex = dot(cross(sub(b, a), sub(c, b)), n) > 0;
+    }
+    if (convex) {
+      triangles.push_back({outer[0], outer[1], outer[2]});
+      triangles.push_back({outer[0], outer[2], outer[3]});
+      return true;
+    }
+  }
   // A right-handed frame (u, v, n): counter-clockwise in (u, v) turns as the exterior ring does.
   const int smallest = std::abs(n[0]) <= std::abs(n[1]) && std::abs(n[0]) <= std::abs(n[2]) ? 0
                        : std::abs(n[1]) <= std::abs(n[2])                                   ? 1

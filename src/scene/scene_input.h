@@ -3,6 +3,7 @@
 // scene's CRS and origin can be chosen before any mesh is made; then its meshes. One reader per
 // format, each in its own file; load_scene (load_scene.cpp) is the one entry point that picks them.
 #include <array>
+#include <fstream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -42,11 +43,22 @@ std::unique_ptr<SceneInput> open_citygml_text(const std::string& text, const std
 // Mesh files through Assimp: whether it reads the extension, and the reader.
 bool mesh_format_known(const std::string& path);
 std::unique_ptr<SceneInput> open_mesh_file(const std::string& path, const SceneLoadOptions& options);
-// From bytes in memory, `extension` (without the dot) telling the format (the fuzz target's way in).
+// From bytes in memory, `extension` (without the dot) telling the format (the fuzz target's way in),
+// Assimp given `timeout_seconds` to read them (0: the time a file of that size gets).
 std::unique_ptr<SceneInput> open_mesh_bytes(const std::string& bytes, const std::string& extension,
-                                            const std::string& name, const SceneLoadOptions& options);
+                                            const std::string& name, const SceneLoadOptions& options,
+                                            double timeout_seconds = 0.0);
 
 std::unique_ptr<SceneInput> open_cityjson(const std::string& path, const SceneLoadOptions& options);
+
+// The first `bytes` of a file (fewer where it is shorter), for telling formats apart by content.
+inline std::string file_start(const std::string& path, std::size_t bytes) {
+  std::ifstream in(path, std::ios::binary);
+  std::string s(bytes, '\0');
+  in.read(s.data(), static_cast<std::streamsize>(bytes));
+  s.resize(static_cast<std::size_t>(in.gcount()));
+  return s;
+}
 // The same for a document already in memory (the fuzz target's way in); `name` stands for the path.
 std::unique_ptr<SceneInput> open_cityjson_text(const std::string& text, const std::string& name,
                                                const SceneLoadOptions& options);

@@ -49,6 +49,15 @@ std::string gltf_triangle(const float (&p)[9]) {
          std::to_string(std::max({p[2], p[5], p[8]})) + "]}]}";
 }
 
+// A binary PLY on which Debian's Assimp 5.2 crashes (SIGSEGV in its PLY parser).
+const char kAssimpCrashingPly[] =
+    "\x70\x6c\x79\x0a\x66\x6f\x72\x6d\x61\x74\x20\x62\x69\x6e\x61\x72\x79\x5f\x30\x0a\x0a\x6f\x20\x31"
+    "\x0a\x0a\x23\x20\x56\x65\x72\x74\x65\x78\x20\x6c\x69\x73\x74\x0a\x0a\x76\x20\x2d\x30\x2e\x35\x20"
+    "\x2d\x30\x2e\x35\x20\x30\x2e\x35\x0a\x76\x20\x2d\x30\x0a\x65\x6e\x64\x5f\x68\x65\x61\x64\x65\x72"
+    "\x69\x6e\x74\x2f\x4c\x69\x6e\x65\x2f\x46\x61\x63\x65\x20\x6c\x69\x73\x74\x0a\x0a\x75\x73\x65\x6d"
+    "\x00\x00\x00\x03\x00\x00\x00\x03\x03\x00\x00\x00\x07\x00\x00\x00\x04\x00\x00\x00\x03\x03\x00\x00"
+    "\x00\x04\x00\x00\x00\x00\x00\x00\x00";
+
 std::string error_of(const std::vector<std::string>& inputs, const SceneLoadOptions& o = {}) {
   try {
     load_scene(inputs, o);
@@ -135,6 +144,14 @@ TEST(SceneMeshFiles, BadMeshesAreCountedAndSkipped) {
   EXPECT_NE(error_of({dir + "/lines.obj"}).find("points or lines only"), std::string::npos);
   write_text(dir + "/short.obj", "# nothing\n");
   EXPECT_NE(error_of({dir + "/short.obj"}).find("cannot read"), std::string::npos);
+  // Assimp 5.2 loops for ever on a PLY header without end_header, and dies of SIGSEGV on this
+  // one (found by fuzz_mesh_reader): one-line errors, the process alive.
+  write_text(dir + "/truncated.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n0 0 0\n");
+  EXPECT_NE(error_of({dir + "/truncated.ply"}).find("not a complete PLY file"), std::string::npos);
+  const std::string crashing(kAssimpCrashingPly, sizeof kAssimpCrashingPly - 1);
+  write_text(dir + "/crashing.ply", crashing);
+  EXPECT_NE(error_of({dir + "/crashing.ply"}).find("Assimp crashed (signal"), std::string::npos)
+      << error_of({dir + "/crashing.ply"});
   const std::string infinite = test_model("glTF2/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb");
   REQUIRE_MODEL(infinite);
   EXPECT_NE(error_of({infinite}).find("only non-finite vertices"), std::string::npos);
