@@ -19,8 +19,16 @@ bool any_format(const Scene& s, const std::string& prefix) {
                      [&](const SceneInputReport& i) { return i.format.rfind(prefix, 0) == 0; });
 }
 
+// "1 mesh", "2 meshes".
+std::string count(long long n, const char* one, const char* many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
 void print_summary(const Scene& s, const nlohmann::json& j) {
-  std::printf("Scene: %zu meshes, %zu triangles\n", s.meshes.size(), s.triangle_count());
+  const auto meshes = static_cast<long long>(s.meshes.size());
+  const auto triangles = static_cast<long long>(s.triangle_count());
+  std::printf("Scene: %s, %s\n", count(meshes, "mesh", "meshes").c_str(),
+              count(triangles, "triangle", "triangles").c_str());
   std::printf("CRS: %s\n", j["crs"].get<std::string>().c_str());
   std::printf("Origin: %s %s %s (vertices are stored relative to it)\n", number_text(s.origin[0]).c_str(),
               number_text(s.origin[1]).c_str(), number_text(s.origin[2]).c_str());
@@ -30,17 +38,19 @@ void print_summary(const Scene& s, const nlohmann::json& j) {
               b["min"][2].get<double>(), b["max"][2].get<double>());
   std::printf("Inputs:\n");
   for (const SceneInputReport& i : s.report.inputs) {
-    std::printf("  %s: %s, CRS %s: %lld meshes, %lld triangles", i.path.c_str(), i.format.c_str(), i.crs.c_str(),
-                static_cast<long long>(i.meshes), static_cast<long long>(i.triangles));
+    std::printf("  %s: %s, CRS %s: %s, %s", i.path.c_str(), i.format.c_str(), i.crs.c_str(),
+                count(i.meshes, "mesh", "meshes").c_str(), count(i.triangles, "triangle", "triangles").c_str());
     if (i.meshes_skipped + i.surfaces_skipped + i.triangles_skipped > 0) {
-      std::printf("; skipped %lld objects, %lld surfaces, %lld triangles", static_cast<long long>(i.meshes_skipped),
-                  static_cast<long long>(i.surfaces_skipped), static_cast<long long>(i.triangles_skipped));
+      std::printf("; skipped %s, %s, %s", count(i.meshes_skipped, "object", "objects").c_str(),
+                  count(i.surfaces_skipped, "surface", "surfaces").c_str(),
+                  count(i.triangles_skipped, "triangle", "triangles").c_str());
     }
     std::printf("\n");
   }
   const SceneReport& r = s.report;
-  std::printf("Skipped: %lld objects, %lld surfaces, %lld triangles%s\n", static_cast<long long>(r.meshes_skipped),
-              static_cast<long long>(r.surfaces_skipped), static_cast<long long>(r.triangles_skipped),
+  std::printf("Skipped: %s, %s, %s%s\n", count(r.meshes_skipped, "object", "objects").c_str(),
+              count(r.surfaces_skipped, "surface", "surfaces").c_str(),
+              count(r.triangles_skipped, "triangle", "triangles").c_str(),
               r.meshes_skipped + r.surfaces_skipped + r.triangles_skipped > 0 ? " (the warnings say which)" : "");
 }
 
@@ -124,8 +134,9 @@ Runner setup(CLI::App& app) {
     if (!o->out.empty()) {
       write_scene_ply(s, o->out, o->overwrite);
       if (!o->quiet) {
-        std::fprintf(stderr, "Wrote %s: %zu meshes, %zu triangles\n", o->out.c_str(), s.meshes.size(),
-                     s.triangle_count());
+        std::fprintf(stderr, "Wrote %s: %s, %s\n", o->out.c_str(),
+                     count(static_cast<long long>(s.meshes.size()), "mesh", "meshes").c_str(),
+                     count(static_cast<long long>(s.triangle_count()), "triangle", "triangles").c_str());
       }
     }
     return 0;

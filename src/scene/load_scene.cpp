@@ -3,6 +3,7 @@
 // transform into them.
 #include <gdal_priv.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include "scene/scene_input.h"
 #include "skyview/core/error.h"
 #include "skyview/core/lowercase.h"
+#include "skyview/core/number_text.h"
 #include "skyview/raster/raster_io.h"
 #include "skyview/scene/scene.h"
 
@@ -167,6 +169,17 @@ Scene load_scene(const std::vector<std::string>& inputs, const SceneLoadOptions&
       assembly.end_input();
       opened[i].reset();  // its memory, before the next is read
     }
+  }
+  // Float vertices step by 1/16 mm at 1 km from the origin, by 6 cm at 1000 km: inputs far apart
+  // (cities in different countries) lose their small triangles.
+  const auto b = scene.bounds();
+  double far = 0;
+  for (int k = 0; k < 3; ++k) far = std::max({far, std::abs(double(b[0][k])), std::abs(double(b[1][k]))});
+  if (b[0][0] <= b[1][0] && far > 1e5) {
+    scene.report.warnings.push_back("the scene reaches " + std::to_string(static_cast<long long>(far / 1000)) +
+                                    " km from its origin, where its float coordinates step by " +
+                                    number_text(std::ldexp(1.0, std::ilogb(far) - 23)) +
+                                    " m: inputs that far apart are better loaded as scenes of their own");
   }
   if (scene.triangle_count() == 0) {
     std::string why = scene.report.warnings.empty() ? "" : " (" + scene.report.warnings.front() + ")";

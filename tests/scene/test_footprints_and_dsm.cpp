@@ -1,5 +1,8 @@
 // Footprints extruded to prisms and DSM rasters meshed as the ray cast meshes them: the synthetic
 // district (whose every height is known) and the Gothenburg DSM of ../shared.
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
 #include <algorithm>
 
 #include "core/test_support.h"
@@ -120,6 +123,41 @@ TEST(SceneFootprints, RelativeHeightsStandOnTheDsmOrOnZero) {
     EXPECT_NEAR(hi, ground + b.height, 1e-3) << m.name;
   }
   for (const std::string& w : s.report.warnings) EXPECT_EQ(w.find("stand on 0 m"), std::string::npos) << w;
+}
+
+TEST(SceneFootprints, AthensTreesOnTheirTerrain) {
+  const std::string dem = std::string(SKYVIEW_SHARED_DIR) + "/sample_data/city_athens/DEM.tif";
+  const std::string trees = std::string(SKYVIEW_SHARED_DIR) + "/sample_data/city_athens/trees.gpkg";
+  if (!std::filesystem::exists(trees)) GTEST_SKIP() << "../shared/sample_data is absent: real-data test skipped";
+  SceneLoadOptions o;
+  o.height_field = "height";
+  const Scene s = load_scene({trees, dem}, o);
+  ASSERT_EQ(s.meshes.size(), 7u);  // the terrain and six tree crowns
+  EXPECT_TRUE(s.report.warnings.empty()) << s.report.warnings.front();
+  // Each crown stands on the terrain and rises by its height field.
+  GDALDatasetUniquePtr layer(GDALDataset::Open(trees.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  ASSERT_TRUE(layer);
+  const Terrain t = read_terrain(dem, {});
+  double lowest = 1e300, highest = -1e300;
+  for (int r = 0; r < t.height(); ++r) {
+    for (int c = 0; c < t.width(); ++c) {
+      if (t.valid(c, r))
+        lowest = std::min(lowest, t.absolute_height(c, r)), highest = std::max(highest, t.absolute_height(c, r));
+    }
+  }
+  int checked = 0;
+  for (auto& feature : *layer->GetLayer(0)) {
+    const SceneMesh* m = find_mesh(s, "footprint " + std::to_string(feature->GetFID()));
+    ASSERT_NE(m, nullptr) << feature->GetFID();
+    EXPECT_TRUE(watertight(*m));
+    float lo = 1e9f, hi = -1e9f;
+    for (const Vec3f& v : m->vertices) lo = std::min(lo, v[2]), hi = std::max(hi, v[2]);
+    EXPECT_NEAR(hi - lo, feature->GetFieldAsDouble("height"), 1e-4);
+    EXPECT_GE(lo, lowest - 1e-3);
+    EXPECT_LE(lo, highest + 1e-3);
+    ++checked;
+  }
+  EXPECT_EQ(checked, 6);
 }
 
 TEST(SceneFootprints, BadLayersAndOptions) {
