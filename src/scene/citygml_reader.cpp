@@ -19,6 +19,7 @@
 #include <limits>
 #include <sstream>
 
+#include "scene/level_of_detail.h"
 #include "scene/polygon_mesh.h"
 #include "scene/scene_input.h"
 #include "skyview/core/error.h"
@@ -82,17 +83,7 @@ class CityGmlInput : public SceneInput {
   // `stream` holds the document; `head` its first bytes (for the version); `name` names it.
   CityGmlInput(std::istream& stream, const std::string& head, const std::string& name, const SceneLoadOptions& o)
       : name_(name) {
-    if (!o.lod.empty()) {
-      std::size_t used = 0;
-      try {
-        lod_limit_ = std::stod(o.lod, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used == 0 || used != o.lod.size() || !(lod_limit_ >= 0)) {
-        throw Error("the level of detail must be a number such as 2 or 2.2, not '" + o.lod + "'");
-      }
-    }
+    lod_limit_ = lod_limit(o.lod);
     for (const char* v : {"1.0", "2.0", "3.0"}) {
       if (head.find(std::string("opengis.net/citygml/") + v) != std::string::npos) version_ = v;
     }
@@ -167,9 +158,7 @@ class CityGmlInput : public SceneInput {
       return;
     }
     if (chosen == -kInf) {
-      std::ostringstream limit;
-      limit << lod_limit_;
-      scene.skip(name, "without geometry at or below LoD " + limit.str());
+      scene.skip(name, "without geometry at or below LoD " + lod_text(lod_limit_));
       return;
     }
     PolygonMesh mesh(name);

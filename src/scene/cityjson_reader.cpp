@@ -11,6 +11,7 @@
 #include <limits>
 #include <sstream>
 
+#include "scene/level_of_detail.h"
 #include "scene/polygon_mesh.h"
 #include "scene/scene_input.h"
 #include "skyview/core/error.h"
@@ -79,17 +80,7 @@ struct Templates {
 class CityJsonInput : public SceneInput {
  public:
   CityJsonInput(const std::string& text, const std::string& name, const SceneLoadOptions& options) : name_(name) {
-    if (!options.lod.empty()) {
-      std::size_t used = 0;
-      try {
-        lod_limit_ = std::stod(options.lod, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used == 0 || used != options.lod.size() || !(lod_limit_ >= 0)) {
-        throw Error("the level of detail must be a number such as 2 or 2.2, not '" + options.lod + "'");
-      }
-    }
+    lod_limit_ = lod_limit(options.lod);
     parse(text);
     decode_header();
     // The extent: the file's own where it states one, else its vertices'.
@@ -354,12 +345,6 @@ class CityJsonInput : public SceneInput {
         ++flat;
       }
     }
-  }
-
-  static std::string lod_text(double lod) {
-    std::ostringstream s;
-    s << lod;
-    return s.str();
   }
 
   std::string name_;

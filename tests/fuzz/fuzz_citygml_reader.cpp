@@ -7,18 +7,14 @@
 #include <cstdint>
 #include <string>
 
+#include "fuzz_scene_support.h"
 #include "scene/scene_input.h"
 #include "skyview/core/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {
     const auto input = skyview::open_citygml_text(std::string(reinterpret_cast<const char*>(data), size), "fuzz", {});
-    skyview::Scene scene;
-    skyview::SceneAssembly assembly(scene);
-    assembly.begin_input({"fuzz", input->format(), input->declared_crs()}, nullptr);
-    input->add_to(assembly);
-    assembly.end_input();
-    (void)input->extent();
+    skyview::fuzz::add_to_scene(*input);
   } catch (const skyview::Error&) {
     // The documented way to reject a bad file.
   }

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 
+#include "fuzz_scene_support.h"
 #include "scene/scene_input.h"
 #include "skyview/core/error.h"
 
@@ -15,12 +16,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (size > 0 && data[0] == '2') options.lod = "2";  // both ways of choosing a level of detail
     const auto input =
         skyview::open_cityjson_text(std::string(reinterpret_cast<const char*>(data), size), "fuzz", options);
-    skyview::Scene scene;
-    skyview::SceneAssembly assembly(scene);
-    assembly.begin_input({"fuzz", input->format(), input->declared_crs()}, nullptr);
-    input->add_to(assembly);
-    assembly.end_input();
-    (void)input->extent();
+    skyview::fuzz::add_to_scene(*input);
   } catch (const skyview::Error&) {
     // The documented way to reject a bad file.
   }

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <string>
 
+#include "fuzz_scene_support.h"
 #include "scene/scene_input.h"
 #include "skyview/core/error.h"
 
@@ -19,11 +20,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // Assimp runs in a child process; 5 s for it, within libFuzzer's 10 s.
     const auto input = skyview::open_mesh_bytes(std::string(reinterpret_cast<const char*>(data + 1), size - 1), format,
                                                 "fuzz", {}, 5.0);
-    skyview::Scene scene;
-    skyview::SceneAssembly assembly(scene);
-    assembly.begin_input({"fuzz", input->format(), input->declared_crs()}, nullptr);
-    input->add_to(assembly);
-    assembly.end_input();
+    skyview::fuzz::add_to_scene(*input);
   } catch (const skyview::Error&) {
     // The documented way to reject a bad file.
   }
