@@ -5,6 +5,9 @@ packages=(
   cmake g++ make pkg-config
   libgdal-dev gdal-bin libnetcdf-dev libgeographiclib-dev libopencv-dev libpcl-dev libembree-dev libtbb-dev libgeos-dev
   libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev
+  # Scenes: CityGML (libcitygml's CMake target also names libGL.so and libGLU.so)
+  libcitygml-dev libglu1-mesa-dev libgl-dev
+  libassimp-dev assimp-testmodels  # mesh files (OBJ, PLY, glTF...); the models are read by the tests
   clang clang-format libclang-rt-14-dev  # libFuzzer and sanitizer runtimes (only recommended by clang)
   python3  # scripts/fuzz.sh writes its seed LAS files with it
   tzdata  # IANA zone rules read by skyview sun --tz (src/solar/time_zone.cpp)

@@ -16,6 +16,7 @@
 #include "skyview/raster/height_unit.h"
 #include "skyview/core/number_text.h"
 #include "skyview/dsm/point_cloud.h"
+#include "dsm/footprint_layer.h"
 #include "dsm/point_filters.h"
 #include "skyview/dsm/point_gridder.h"
 #include "skyview/raster/raster_io.h"
@@ -107,12 +108,6 @@ GDALDatasetUniquePtr open_raster(const std::string& path) {
   return ds;
 }
 
-// Metres per unit of the footprints' height fields (DsmOptions::footprint_z_scale).
-HeightUnit footprint_height_unit(const DsmOptions& o, const OGRSpatialReference* crs) {
-  if (o.footprint_z_scale > 0.0) return {o.footprint_z_scale, "--footprint-z-scale"};
-  return unstated_height_unit(crs, o.footprints, "--footprint-z-scale");
-}
-
 }  // namespace
 
 DsmResult build_dsm(const DsmOptions& o) {
@@ -141,27 +136,12 @@ DsmResult build_dsm(const DsmOptions& o) {
   for (const auto& c : clouds) {
     if (first_crs.empty()) first_crs = cloud_crs(*c);
   }
-  GDALDatasetUniquePtr vector;
+  std::optional<FootprintLayer> footprints;
   OGRLayer* layer = nullptr;
   if (!o.footprints.empty()) {
-    vector.reset(GDALDataset::Open(o.footprints.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
-    if (!vector || vector->GetLayerCount() == 0) throw Error("cannot open '" + o.footprints + "' as a vector layer");
-    layer = vector->GetLayer(0);
-    const OGRwkbGeometryType g = wkbFlatten(layer->GetGeomType());
-    if (g != wkbPolygon && g != wkbMultiPolygon && g != wkbUnknown) {
-      throw Error("'" + o.footprints + "' holds no polygons (its first layer is " + OGRGeometryTypeToName(g) + ")");
-    }
-    // A text field (building names, say) would read as height 0 everywhere.
-    for (const std::string& field : {o.height_field, o.base_field}) {
-      if (field.empty()) continue;
-      const int index = layer->GetLayerDefn()->GetFieldIndex(field.c_str());
-      if (index < 0) throw Error("'" + o.footprints + "' has no field '" + field + "'");
-      const OGRFieldType type = layer->GetLayerDefn()->GetFieldDefn(index)->GetType();
-      if (type != OFTInteger && type != OFTInteger64 && type != OFTReal) {
-        throw Error("field '" + field + "' of '" + o.footprints + "' holds " + OGRFieldDefn::GetFieldTypeName(type) +
-                    ", not numbers");
-      }
-    }
+    footprints.emplace(o.footprints,
+                       FootprintFields{o.height_field, o.base_field, o.absolute_heights, o.footprint_z_scale});
+    layer = &footprints->layer();
     if (first_crs.empty() && layer->GetSpatialRef()) {
       char* w = nullptr;
       layer->GetSpatialRef()->exportToWkt(&w);
@@ -320,12 +300,8 @@ DsmResult build_dsm(const DsmOptions& o) {
   if (layer) {
     TransformPtr t;
     if (layer->GetSpatialRef()) t = transform(*layer->GetSpatialRef(), target, "'" + o.footprints + "'");
-    // Only height fields have a unit to find (footprints that take their heights from returns do not).
-    double fp_scale = 1.0;
-    if (!o.height_field.empty() || !o.base_field.empty()) {
-      const HeightUnit unit = footprint_height_unit(o, layer->GetSpatialRef());
-      fp_scale = unit.metres;
-      out.report.height_units.push_back("'" + o.footprints + "': " + unit.source);
+    if (!footprints->height_unit().empty()) {
+      out.report.height_units.push_back("'" + o.footprints + "': " + footprints->height_unit());
     }
     GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
     GDALDatasetUniquePtr ids(mem->Create("", width, height, 1, GDT_Float32, nullptr));
@@ -334,67 +310,20 @@ DsmResult build_dsm(const DsmOptions& o) {
     ids->SetProjection(out.georef.crs_wkt.c_str());
     std::vector<OGRGeometryH> geoms;
     std::vector<double> burn;
-    layer->ResetReading();
-    int polygons = 0;
-    for (auto& feature : *layer) {
-      OGRGeometry* g = feature->GetGeometryRef();
-      const OGRwkbGeometryType type = g ? wkbFlatten(g->getGeometryType()) : wkbUnknown;
-      std::unique_ptr<OGRGeometry> geom;
-      if (type == wkbPolygon || type == wkbMultiPolygon) {
-        geom.reset(g->clone());
-      } else if (type == wkbGeometryCollection) {  // its polygons are the footprint
-        auto parts = std::make_unique<OGRMultiPolygon>();
-        for (const OGRGeometry* part : *g->toGeometryCollection()) {
-          const OGRwkbGeometryType pt = wkbFlatten(part->getGeometryType());
-          if (pt == wkbPolygon) parts->addGeometry(part);
-          if (pt == wkbMultiPolygon) {
-            for (const OGRPolygon* p : *part->toMultiPolygon()) parts->addGeometry(p);
-          }
-        }
-        if (!parts->IsEmpty()) geom = std::move(parts);
-      }
-      if (!geom) {  // a point, a line, no geometry: not a building's outline
-        ++out.report.footprints_not_polygons;
-        continue;
-      }
-      ++polygons;
-      if (!geom->IsValid()) {
-        std::unique_ptr<OGRGeometry> fixed(geom->MakeValid());
-        if (!fixed || !fixed->IsValid()) {
-          ++out.report.footprints_skipped;
-          continue;
-        }
-        geom = std::move(fixed);
-        ++out.report.footprints_repaired;
-      }
-      if (t && geom->transform(t.get()) != OGRERR_NONE) {
-        ++out.report.footprints_skipped;
-        continue;
-      }
-      // A ring on a line (or a sliver that MakeValid collapsed) covers no cell centre.
-      if (!(OGR_G_Area(OGRGeometry::ToHandle(geom.get())) > 0.0)) {
-        ++out.report.footprints_skipped;
-        continue;
-      }
-      // Heights beyond any building's are a wrong field or unit (a sum, millimetres), not data.
-      auto read = [&](const std::string& field, double lo, double hi) {
-        const int index = field.empty() ? -1 : feature->GetFieldIndex(field.c_str());
-        if (index < 0 || !feature->IsFieldSetAndNotNull(index)) return std::numeric_limits<double>::quiet_NaN();
-        const double v = feature->GetFieldAsDouble(index) * fp_scale;
-        if (!(v >= lo && v <= hi)) {
-          throw Error("footprint " + std::to_string(feature->GetFID()) + " of '" + o.footprints + "' has " + field +
-                      " = " + number_text(v) + " m, outside " + number_text(lo) + " to " + number_text(hi) +
-                      " m; check the field and its unit");
-        }
-        return v;
-      };
-      fp_height.push_back(o.absolute_heights ? read(o.height_field, -500.0, 9000.0)
-                                             : read(o.height_field, -100.0, 1000.0));
-      fp_base.push_back(read(o.base_field, -500.0, 9000.0));
-      geoms.push_back(OGRGeometry::ToHandle(geom.release()));
-      burn.push_back(static_cast<double>(geoms.size()));
-    }
-    if (polygons == 0) throw Error("'" + o.footprints + "' holds no polygons");
+    FootprintCounts counts;
+    footprints->read(
+        t.get(),
+        [&](Footprint& f) {
+          fp_height.push_back(f.height);
+          fp_base.push_back(f.base);
+          geoms.push_back(OGRGeometry::ToHandle(f.polygons.release()));
+          burn.push_back(static_cast<double>(geoms.size()));
+        },
+        counts);
+    out.report.footprints_not_polygons += counts.not_polygons;
+    out.report.footprints_repaired += counts.repaired;
+    out.report.footprints_skipped += counts.skipped;
+    if (counts.polygons == 0) throw Error("'" + o.footprints + "' holds no polygons");
     int bands[] = {1};
     if (!geoms.empty() &&
         GDALRasterizeGeometries(ids.get(), 1, bands, static_cast<int>(geoms.size()), geoms.data(), nullptr, nullptr,
@@ -549,16 +478,7 @@ DsmResult build_dsm(const DsmOptions& o) {
     const float id = footprint_id.values()[k];
     if (id > 0) {
       const std::size_t f = static_cast<std::size_t>(id) - 1;
-      double top = std::numeric_limits<double>::quiet_NaN();
-      if (!std::isnan(fp_height[f])) {
-        if (!std::isnan(fp_base[f])) {
-          top = fp_base[f] + fp_height[f];
-        } else if (o.absolute_heights) {
-          top = fp_height[f];
-        } else if (std::isfinite(fp_ground[f])) {
-          top = fp_ground[f] + fp_height[f];
-        }
-      }
+      const double top = footprint_top(fp_height[f], fp_base[f], o.absolute_heights, fp_ground[f]);
       if (!std::isnan(top)) {
         v = std::isnan(v) ? static_cast<float>(top) : std::max(v, static_cast<float>(top));
         burned[f] = 1;
