@@ -70,14 +70,7 @@ void require_extension(const std::string& path, const std::vector<std::string>& 
 }
 
 ParsedTime parse_time_option(const std::string& text, const std::string& zone) {
-  ParsedTime t;
-  try {
-    t = parse_time(text, zone);
-  } catch (const UsageError&) {
-    throw;
-  } catch (const Error& e) {  // a time that cannot be read is the option's value at fault
-    throw UsageError(e.what());
-  }
+  const ParsedTime t = as_usage_error([&] { return parse_time(text, zone); });
   if (t.ambiguous) {
     std::fprintf(stderr,
                  "Warning: '%s' occurs twice in %s (clocks set back); taken as the earlier, %s; give a UTC offset "
@@ -159,13 +152,7 @@ void RunSummary::print(const std::string& what, bool quiet) const {
 }
 
 double parse_duration_option(const std::string& text) {
-  try {
-    return parse_duration_s(text);
-  } catch (const UsageError&) {
-    throw;
-  } catch (const Error& e) {
-    throw UsageError(e.what());
-  }
+  return as_usage_error([&] { return parse_duration_s(text); });
 }
 
 std::size_t peak_memory_bytes() {

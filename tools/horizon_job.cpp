@@ -27,7 +27,7 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
                  "The input's CRS where it carries none or a wrong one (EPSG:25833, a WKT or PROJ string), as "
                  "gdal_translate -a_srs states it; without any CRS coordinates are taken as metres");
   app.add_option(
-         "--method", o.method,
+         o.method_option, o.method,
          "Horizon method: sweep (hull sweep, unlimited radius or --radius), march, sampled, raycast (Embree reference)")
       ->capture_default_str();
   app.add_option("--directions", o.params.directions, "Number of azimuth directions")->capture_default_str();
@@ -86,20 +86,22 @@ void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o) {
 namespace {
 
 // Every option that the library's checks refuse when the run would not use it.
-const char* const kCheckedOptions[] = {"--method",   "--directions", "--samples", "--far-lines",  "--radius",
-                                       "--azimuths", "--rays",       "--seed",    "--refraction", "--azimuth-origin"};
+const char* const kCheckedOptions[] = {"--directions", "--samples", "--far-lines",  "--radius",        "--azimuths",
+                                       "--rays",       "--seed",    "--refraction", "--azimuth-origin"};
 
 }  // namespace
 
 HorizonRequest horizon_request(const HorizonJobOptions& o) {
   HorizonRequest r;
   r.method = o.method;
+  r.method_option = o.method_option;
   r.edge = o.edge;
   r.max_error = o.max_error;
   r.azimuth_origin = o.azimuth_origin;
   r.azimuths = o.azimuths;
   r.params = o.params;
   if (o.app) {
+    if (o.app->count(o.method_option) > 0) r.given.insert(o.method_option);
     for (const char* name : kCheckedOptions) {
       if (o.app->count(name) > 0) r.given.insert(name);
     }

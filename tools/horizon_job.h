@@ -23,6 +23,9 @@ struct HorizonJobOptions {
   double z_scale = 0.0;          // 0: from the raster (height_unit.h)
   std::string s_srs;             // the input's CRS where it states none (or a wrong one)
   std::string method = "sweep";  // exact and the fastest for a given error (docs/benchmarks.md)
+  // The option naming the horizon method: --method, or --horizon-method where a command's own
+  // --method chooses something else (skyview exposure's fast or exact).
+  std::string method_option = "--method";
   std::string edge = "open";
   double max_error = -1.0;  // >= 0: choose method and parameters for this p99 svf error
   // Where sector 0 points (AzimuthOrigin): each command sets its default before its options.

@@ -1,6 +1,6 @@
 #include "skyview/benchmark/method_benchmark.h"
 
-#include <opencv2/imgproc.hpp>
+#include "skyview/benchmark/pareto_plot.h"
 
 #include <algorithm>
 #include <chrono>
@@ -11,7 +11,6 @@
 #include <set>
 #include <sstream>
 
-#include "preview/opencv_png.h"
 #include "skyview/core/error.h"
 #include "skyview/raster/raster_io.h"
 
@@ -257,80 +256,22 @@ std::string bench_to_markdown(const std::string& raster, const BenchReference& r
 
 void plot_bench(const std::string& png_path, const std::string& title, const std::vector<BenchResult>& results,
                 bool overwrite) {
-  const int W = 900, H = 600, left = 90, right = 30, top = 50, bottom = 70;
-  cv::Mat img(H, W, CV_8UC3, cv::Scalar(255, 255, 255));
-  double tmin = 1e30, tmax = 0, emin = 1e30, emax = 0;
-  for (const auto& r : results) {
-    tmin = std::min(tmin, r.seconds), tmax = std::max(tmax, r.seconds);
-    emin = std::min(emin, std::max(r.judged_p99(), 1e-5)), emax = std::max(emax, std::max(r.judged_p99(), 1e-5));
-  }
-  const double lt0 = std::floor(std::log10(tmin)), lt1 = std::ceil(std::log10(tmax) + 1e-9);
-  const double le0 = std::floor(std::log10(emin)), le1 = std::ceil(std::log10(emax) + 1e-9);
-  auto px = [&](double t, double e) {
-    const double x = left + (std::log10(t) - lt0) / std::max(1e-9, lt1 - lt0) * (W - left - right);
-    const double y =
-        H - bottom - (std::log10(std::max(e, 1e-5)) - le0) / std::max(1e-9, le1 - le0) * (H - top - bottom);
-    return cv::Point(static_cast<int>(x), static_cast<int>(y));
-  };
-  const cv::Scalar grey(200, 200, 200), black(0, 0, 0);
-  for (double d = lt0; d <= lt1; ++d) {
-    cv::line(img, px(std::pow(10, d), std::pow(10, le0)), px(std::pow(10, d), std::pow(10, le1)), grey);
-    std::ostringstream l;
-    l << std::pow(10, d) << " s";
-    cv::putText(img, l.str(), px(std::pow(10, d), std::pow(10, le0)) + cv::Point(-20, 22), cv::FONT_HERSHEY_SIMPLEX,
-                0.45, black);
-  }
-  for (double d = le0; d <= le1; ++d) {
-    cv::line(img, px(std::pow(10, lt0), std::pow(10, d)), px(std::pow(10, lt1), std::pow(10, d)), grey);
-    std::ostringstream l;
-    l << std::pow(10, d);
-    cv::putText(img, l.str(), px(std::pow(10, lt0), std::pow(10, d)) + cv::Point(-75, 5), cv::FONT_HERSHEY_SIMPLEX,
-                0.45, black);
-  }
-  // Centred above the plot, clear of the axis label at its top left.
-  int baseline = 0;
-  const cv::Size title_size = cv::getTextSize(title, cv::FONT_HERSHEY_SIMPLEX, 0.6, 1, &baseline);
-  cv::putText(img, title, cv::Point((W - title_size.width) / 2, 24), cv::FONT_HERSHEY_SIMPLEX, 0.6, black);
-  cv::putText(img, "time per run (log)", cv::Point(W / 2 - 60, H - 20), cv::FONT_HERSHEY_SIMPLEX, 0.5, black);
-  const bool continuous = std::any_of(results.begin(), results.end(), [](auto& r) { return r.has_continuous(); });
-  cv::putText(img, continuous ? "p99 |svf - continuous svf|" : "p99 |svf error|", cv::Point(5, top - 10),
-              cv::FONT_HERSHEY_SIMPLEX, 0.5, black);
   // One series per method, and the sweep's far-line variants and its grid-line directions apart.
   auto series = [](const BenchConfig& c) {
     if (c.method != "sweep") return c.method;
     if (c.params.spacing == AzimuthSpacing::grid_lines) return std::string("sweep, grid lines");
     return std::string(c.params.far_lines == 1 ? "sweep, 1 far line" : "sweep, 2 far lines");
   };
-  const std::map<std::string, cv::Scalar> colour{{"sampled", cv::Scalar(40, 120, 230)},
-                                                 {"march", cv::Scalar(60, 170, 60)},
-                                                 {"sweep, 2 far lines", cv::Scalar(200, 60, 60)},
-                                                 {"sweep, 1 far line", cv::Scalar(200, 60, 200)},
-                                                 {"sweep, grid lines", cv::Scalar(20, 20, 20)}};
-  std::vector<const BenchResult*> front;
-  for (const auto& r : results) {
-    if (r.pareto) front.push_back(&r);
-  }
-  std::sort(front.begin(), front.end(), [](auto* a, auto* b) { return a->seconds < b->seconds; });
-  for (std::size_t i = 1; i < front.size(); ++i) {
-    cv::line(img, px(front[i - 1]->seconds, front[i - 1]->judged_p99()), px(front[i]->seconds, front[i]->judged_p99()),
-             cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-  }
-  for (const auto& r : results) {
-    const auto it = colour.find(series(r.config));
-    const cv::Scalar c = it == colour.end() ? black : it->second;
-    cv::circle(img, px(r.seconds, r.judged_p99()), r.pareto ? 6 : 4, c, cv::FILLED, cv::LINE_AA);
-  }
-  int y = top + 10;
-  std::set<std::string> shown;
-  for (const auto& r : results) shown.insert(series(r.config));
-  for (const auto& [name, c] : colour) {
-    if (!shown.count(name)) continue;
-    cv::circle(img, cv::Point(W - 185, y), 5, c, cv::FILLED, cv::LINE_AA);
-    cv::putText(img, name, cv::Point(W - 173, y + 5), cv::FONT_HERSHEY_SIMPLEX, 0.5, black);
-    y += 20;
-  }
-  cv::putText(img, "line: Pareto front", cv::Point(W - 185, y + 5), cv::FONT_HERSHEY_SIMPLEX, 0.45, black);
-  detail::write_bgr_png(png_path, img, overwrite);
+  std::vector<ParetoPoint> points;
+  for (const auto& r : results) points.push_back({series(r.config), r.seconds, r.judged_p99(), r.pareto});
+  const bool continuous = std::any_of(results.begin(), results.end(), [](auto& r) { return r.has_continuous(); });
+  plot_pareto(png_path, title, continuous ? "p99 |svf - continuous svf|" : "p99 |svf error|", points,
+              {{"march", {60, 170, 60}},
+               {"sampled", {40, 120, 230}},
+               {"sweep, 1 far line", {200, 60, 200}},
+               {"sweep, 2 far lines", {200, 60, 60}},
+               {"sweep, grid lines", {20, 20, 20}}},
+              overwrite);
 }
 
 }  // namespace skyview

@@ -39,7 +39,8 @@ AzimuthOrigin direction_set_origin(const HorizonParams& params) {
 }
 
 double direction_set_rotation(const HorizonParams& params, const Terrain& terrain) {
-  return direction_set_rotation(direction_set_origin(params), terrain);
+  return direction_set_rotation(direction_set_origin(params), terrain) +
+         (params.spacing == AzimuthSpacing::uniform ? params.azimuth_offset : 0.0);
 }
 
 DirectionSet direction_set(const HorizonParams& params, const Terrain& terrain) {
@@ -111,11 +112,14 @@ std::vector<std::string> horizon_method_names() { return {"sampled", "march", "s
 
 std::unique_ptr<HorizonEngine> make_horizon_engine(std::string_view method, const HorizonParams& params) {
   if (params.directions < 1 || params.directions > 4096) throw UsageError("--directions must be between 1 and 4096");
-  if (!(params.radius >= 0.0) || std::isinf(params.radius)) throw UsageError("--radius must be a positive number of metres");
+  if (!(params.radius >= 0.0) || std::isinf(params.radius))
+    throw UsageError("--radius must be a positive number of metres");
+  if (!std::isfinite(params.azimuth_offset)) throw Error("the azimuth offset of the directions must be finite");
   if (params.spacing == AzimuthSpacing::grid_lines) {
     check_grid_lines_count(params.directions);
     if (method == "sampled")
-      throw UsageError("--azimuths grid-lines needs fixed directions: the sampled method turns each cell's set at random");
+      throw UsageError(
+          "--azimuths grid-lines needs fixed directions: the sampled method turns each cell's set at random");
   }
   if (method == "sampled") return detail::make_sampled_engine(params);
   if (method == "march") return detail::make_march_engine(params);

@@ -10,8 +10,8 @@
 #include <sstream>
 #include <vector>
 
-#include "skyview/solar/civil_time.h"
 #include "skyview/core/error.h"
+#include "skyview/solar/civil_time.h"
 
 namespace skyview {
 namespace {
@@ -167,6 +167,8 @@ EpwFile read_epw(const std::string& path) {
     r.global_horizontal = solar_value(fields[13], file.missing_solar_values);
     r.direct_normal = solar_value(fields[14], file.missing_solar_values);
     r.diffuse_horizontal = solar_value(fields[15], file.missing_solar_values);
+    if (double albedo; fields.size() > 32 && parse_number(fields[32], albedo) && albedo >= 0.0 && albedo <= 1.0)
+      r.albedo = albedo;
     file.records.push_back(r);
   }
   if (!have_location) throw Error(path + ": not an EPW file (no LOCATION line)");
@@ -178,6 +180,17 @@ EpwFile read_epw(const std::string& path) {
     r.time_utc = static_cast<double>(days_from_civil(CivilDate{r.year, r.month, r.day})) * 86400.0 + hours * 3600.0;
   }
   return file;
+}
+
+std::optional<double> mean_albedo(const EpwFile& file) {
+  double sum = 0.0, weight = 0.0;
+  for (const EpwRecord& r : file.records) {
+    if (std::isnan(r.albedo) || !(r.global_horizontal > 0.0)) continue;
+    sum += r.albedo * r.global_horizontal;
+    weight += r.global_horizontal;
+  }
+  if (!(weight > 0.0)) return std::nullopt;
+  return sum / weight;
 }
 
 }  // namespace skyview

@@ -19,6 +19,8 @@ ExposurePyramid::ExposurePyramid(const ExposureMap& map) {
   base.diffuse.resize(n);
   base.solid_angle.resize(n);
   base.centre.resize(n);
+  base.direct_moment.resize(n);
+  base.diffuse_moment.resize(n);
   for (int y = 0; y < base.height; ++y) {
     for (int x = 0; x < base.width; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * base.width + x;
@@ -27,6 +29,10 @@ ExposurePyramid::ExposurePyramid(const ExposureMap& map) {
       base.diffuse[i] = map.value(ExposureBand::diffuse, x, y) * omega;
       base.solid_angle[i] = omega;
       base.centre[i] = map.direction(x, y);
+      for (int c = 0; c < 3; ++c) {
+        base.direct_moment[i][c] = base.direct[i] * base.centre[i][c];
+        base.diffuse_moment[i][c] = base.diffuse[i] * base.centre[i][c];
+      }
     }
   }
   levels_.push_back(std::move(base));
@@ -40,6 +46,8 @@ ExposurePyramid::ExposurePyramid(const ExposureMap& map) {
     coarse.diffuse.assign(m, 0.0);
     coarse.solid_angle.assign(m, 0.0);
     coarse.centre.assign(m, Direction{0, 0, 0});
+    coarse.direct_moment.assign(m, Direction{0, 0, 0});
+    coarse.diffuse_moment.assign(m, Direction{0, 0, 0});
     for (int y = 0; y < fine.height; ++y) {
       for (int x = 0; x < fine.width; ++x) {
         const std::size_t i = static_cast<std::size_t>(y) * fine.width + x;
@@ -47,7 +55,11 @@ ExposurePyramid::ExposurePyramid(const ExposureMap& map) {
         coarse.direct[j] += fine.direct[i];
         coarse.diffuse[j] += fine.diffuse[i];
         coarse.solid_angle[j] += fine.solid_angle[i];
-        for (int c = 0; c < 3; ++c) coarse.centre[j][c] += fine.centre[i][c] * fine.solid_angle[i];
+        for (int c = 0; c < 3; ++c) {
+          coarse.centre[j][c] += fine.centre[i][c] * fine.solid_angle[i];
+          coarse.direct_moment[j][c] += fine.direct_moment[i][c];
+          coarse.diffuse_moment[j][c] += fine.diffuse_moment[i][c];
+        }
       }
     }
     for (Direction& d : coarse.centre) {

@@ -19,7 +19,8 @@ void refuse_unused(const HorizonRequest& r, const std::string& option, bool used
 // `method` is the one the run uses (--max-error's choice, if given).
 void check_options_apply(const HorizonRequest& o, const std::string& method) {
   if (o.max_error >= 0.0) {
-    for (const char* name : {"--method", "--directions", "--samples", "--far-lines", "--radius", "--azimuths"}) {
+    for (const std::string& name : {o.method_option, std::string("--directions"), std::string("--samples"),
+                                    std::string("--far-lines"), std::string("--radius"), std::string("--azimuths")}) {
       refuse_unused(o, name, false,
                     "runs without --max-error, which chooses --method, --directions, --samples, --far-lines, "
                     "--radius and --azimuths itself");
@@ -29,15 +30,16 @@ void check_options_apply(const HorizonRequest& o, const std::string& method) {
     throw UsageError("--azimuths grid-lines starts on grid north: leave out --azimuth-origin " + o.azimuth_origin);
   const std::string used_by = " (this run uses " + method +
                               (o.params.radius > 0.0 ? " with --radius " + number_text(o.params.radius) : "") + ")";
-  refuse_unused(o, "--rays", method == "raycast", "--method raycast" + used_by);
-  refuse_unused(o, "--seed", method == "sampled", "--method sampled" + used_by);
+  const std::string& m = o.method_option;
+  refuse_unused(o, "--rays", method == "raycast", m + " raycast" + used_by);
+  refuse_unused(o, "--seed", method == "sampled", m + " sampled" + used_by);
   // With a radius the sweep reads every crossing within it: no near steps to count.
   refuse_unused(o, "--samples", method == "sampled" || (method == "sweep" && !(o.params.radius > 0.0)),
-                "--method sampled, or sweep at unlimited radius" + used_by);
+                m + " sampled, or sweep at unlimited radius" + used_by);
   refuse_unused(o, "--refraction", method != "raycast" && o.params.curvature != "off",
                 "runs with Earth curvature (--curvature on or auto; the ray cast models none)" + used_by);
   refuse_unused(o, "--far-lines", method == "sweep" && !(o.params.radius > 0.0),
-                "--method sweep at unlimited radius" + used_by);
+                m + " sweep at unlimited radius" + used_by);
   // Along the grid's lines the sweep finds every direction exactly: no near steps, no far lines.
   if (o.azimuths == "grid-lines" && method == "sweep" && !(o.params.radius > 0.0)) {
     for (const char* name : {"--samples", "--far-lines"})
@@ -47,10 +49,11 @@ void check_options_apply(const HorizonRequest& o, const std::string& method) {
 
 void check_edge_mode(const HorizonSetup& s) {
   if (s.edge == EdgeMode::nodata && std::isinf(s.engine->radius())) {
-    throw UsageError(std::string("--edge nodata blanks the cells whose search reaches the raster's edge, which with an ") +
-                (s.choice ? "unlimited radius (what --max-error chose: it sets --method, --directions, --samples, "
-                            "--far-lines and --radius) is every cell; choose the method and --radius yourself"
-                          : "unlimited radius is every cell; give --radius"));
+    throw UsageError(
+        std::string("--edge nodata blanks the cells whose search reaches the raster's edge, which with an ") +
+        (s.choice ? "unlimited radius (what --max-error chose: it sets --method, --directions, --samples, "
+                    "--far-lines and --radius) is every cell; choose the method and --radius yourself"
+                  : "unlimited radius is every cell; give --radius"));
   }
 }
 
@@ -67,8 +70,8 @@ void check_edge_leaves_cells(const HorizonSetup& s, const Terrain& t, double rad
     }
   }
   throw UsageError("--edge nodata blanks the cells whose search reaches the raster's edge, which with --radius " +
-              number_text(radius_asked) +
-              " is every cell of this raster; give a smaller --radius or leave --edge open");
+                   number_text(radius_asked) +
+                   " is every cell of this raster; give a smaller --radius or leave --edge open");
 }
 
 // A radius shorter than a cell reaches no grid line from any cell centre, where the shared surface
@@ -78,8 +81,9 @@ void check_radius_reaches_a_neighbour(const HorizonSetup& s, const Terrain& t, d
   if (!std::isfinite(radius)) return;
   const double cell = raster_centre_jacobian(t).min_cell_size();
   if (radius >= cell) return;
-  throw UsageError("--radius " + number_text(radius_asked) + " m reaches no neighbouring cell (the shorter cell side is " +
-              number_text(cell) + " m), so every horizon would be open; the radius is in metres, not cells");
+  throw UsageError("--radius " + number_text(radius_asked) +
+                   " m reaches no neighbouring cell (the shorter cell side is " + number_text(cell) +
+                   " m), so every horizon would be open; the radius is in metres, not cells");
 }
 
 // The metadata of the method that runs (and of --max-error's choice), replacing the last one's.

@@ -56,12 +56,12 @@ TEST(SceneCli, CarelessCommandLines) {
   const std::string dir = temp_dir("scene-cli");
   expect_one_line_error(run_skyview("scene", dir), "inputs is required", 2);
   expect_one_line_error(run_skyview("scene " + dir + "/missing.city.json", dir), "no such file");
-  expect_one_line_error(run_skyview("scene " + zurich + " --out " + dir + "/scene.obj", dir), "must end in .ply");
-  expect_one_line_error(run_skyview("scene " + zurich + " --out " + zurich, dir), "must end in .ply");
-  expect_one_line_error(run_skyview("scene " + zurich + " --height-field h", dir), "--height-field applies only to");
-  expect_one_line_error(run_skyview("scene " + zurich + " --z-scale 0.3048", dir), "--z-scale applies only to");
-  expect_one_line_error(run_skyview("scene " + zurich + " --s_srs EPSG:2056", dir), "--s_srs applies only to");
-  expect_one_line_error(run_skyview("scene " + zurich + " --overwrite", dir), "--overwrite applies only to --out");
+  expect_one_line_error(run_skyview("scene " + zurich + " --out " + dir + "/scene.obj", dir), "must end in .ply", 2);
+  expect_one_line_error(run_skyview("scene " + zurich + " --out " + zurich, dir), "must end in .ply", 2);
+  expect_one_line_error(run_skyview("scene " + zurich + " --height-field h", dir), "--height-field applies only to", 2);
+  expect_one_line_error(run_skyview("scene " + zurich + " --z-scale 0.3048", dir), "--z-scale applies only to", 2);
+  expect_one_line_error(run_skyview("scene " + zurich + " --s_srs EPSG:2056", dir), "--s_srs applies only to", 2);
+  expect_one_line_error(run_skyview("scene " + zurich + " --overwrite", dir), "--overwrite applies only to --out", 2);
   expect_one_line_error(run_skyview("scene " + zurich + " --t_srs EPSG:4326", dir), "not in a projected CRS");
   expect_one_line_error(run_skyview("scene " + zurich + " --up x", dir), "--up", 2);
   write_text(dir + "/notes.txt", "just words\n");

@@ -20,4 +20,17 @@ class UsageError : public Error {
   using Error::Error;
 };
 
+// Runs `read`, turning a skyview::Error into a UsageError: for reading an option's value with a
+// parser that knows nothing of options (a time, a duration).
+template <class Read>
+auto as_usage_error(Read&& read) -> decltype(read()) {
+  try {
+    return read();
+  } catch (const UsageError&) {
+    throw;
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+}
+
 }  // namespace skyview

@@ -10,9 +10,9 @@
 #include <string_view>
 #include <vector>
 
-#include "skyview/horizon/direction_set.h"
 #include "skyview/core/large_pages.h"
 #include "skyview/core/progress.h"
+#include "skyview/horizon/direction_set.h"
 #include "skyview/raster/terrain.h"
 
 namespace skyview {
@@ -32,6 +32,9 @@ struct HorizonParams {
   std::string curvature = "auto";  // auto | on | off
   AzimuthOrigin azimuth_origin = AzimuthOrigin::north;
   AzimuthSpacing spacing = AzimuthSpacing::uniform;  // grid_lines: 4, 8 or 16, from grid north
+  // Radians added to the direction set's rotation (uniform spacing): one direction at the sun's
+  // azimuth for a shadow, say.
+  double azimuth_offset = 0.0;
 };
 
 // Horizons of a window of cells, one plane (window-sized, row-major) per direction: a sweep

@@ -3,6 +3,8 @@
 // skies need. Each record carries the UTC instant its irradiance refers to (see docs/sky.md):
 // the middle of the hour for TMY3/IWEC files (local standard time, hour h covers h−1..h), and for
 // PVGIS files (hours in UTC, "Irradiance Time Offset" comment) the stated offset instant.
+#include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +27,8 @@ struct EpwRecord {
   double global_horizontal = 0.0;
   double direct_normal = 0.0;
   double diffuse_horizontal = 0.0;
+  // Ground albedo (field 33), NaN where the file has none (999) or it is not within 0 .. 1.
+  double albedo = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct EpwFile {
@@ -42,5 +46,9 @@ struct EpwFile {
 // malformed LOCATION line, no DATA PERIODS line before the records, no data records, or a record
 // with too few fields or a bad date.
 EpwFile read_epw(const std::string& path);
+
+// The file's ground albedo: its hours' albedo fields weighted by their global horizontal
+// irradiance (what the reflected light scales with); nullopt where no sunlit hour has one.
+std::optional<double> mean_albedo(const EpwFile& file);
 
 }  // namespace skyview

@@ -2,7 +2,10 @@
 // Mip-map pyramid of an exposure map for the per-surface exposure sampler (Section 6 of the
 // solar-exposure paper): level k merges 2^k × 2^k cells. Each block stores its exposure times
 // solid angle (Wh/m², the block's energy on a surface facing it) and its solid-angle-weighted
-// mean direction, so a region is integrated by summing blocks with one cosine per block.
+// mean direction, so a region is integrated by summing blocks with one cosine per block. It also
+// stores each band's first moment Σ value·Ω·ω: for a normal n that faces every direction of a
+// block, the block's cosine-weighted exposure is exactly n·moment (the sampler's cosine,
+// exposure_sampler.h).
 #include <span>
 #include <vector>
 
@@ -14,9 +17,10 @@ class ExposurePyramid {
  public:
   struct Level {
     int width = 0, height = 0;
-    std::vector<double> direct, diffuse;  // Σ value·Ω over the block (Wh/m²)
-    std::vector<double> solid_angle;      // Σ Ω (sr)
-    std::vector<Direction> centre;        // unit mean direction
+    std::vector<double> direct, diffuse;                   // Σ value·Ω over the block (Wh/m²)
+    std::vector<double> solid_angle;                       // Σ Ω (sr)
+    std::vector<Direction> centre;                         // unit mean direction
+    std::vector<Direction> direct_moment, diffuse_moment;  // Σ value·Ω·ω (Wh/m² times a direction)
   };
 
   explicit ExposurePyramid(const ExposureMap& map);

@@ -18,7 +18,10 @@
 namespace skyview {
 
 struct HorizonRequest {
-  std::string method = "sweep";          // exact and the fastest for a given error (docs/benchmarks.md)
+  std::string method = "sweep";  // exact and the fastest for a given error (docs/benchmarks.md)
+  // The option that names the method in messages: --method, or --horizon-method where a command's
+  // own --method chooses something else (skyview exposure's fast or exact).
+  std::string method_option = "--method";
   std::string edge = "open";             // open | nodata
   double max_error = -1.0;               // >= 0: choose method and parameters for this p99 svf error
   std::string azimuth_origin = "north";  // north | grid (AzimuthOrigin)

@@ -1,0 +1,145 @@
+// skyview shadow: where the sun is seen from every DSM cell at one instant (docs/commands/shadow.md).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <optional>
+
+#include "horizon_job.h"
+#include "sky_job.h"
+#include "skyview/core/error.h"
+#include "skyview/core/number_text.h"
+#include "skyview/exposure/shadow.h"
+#include "skyview/preview/raster_preview.h"
+#include "skyview/solar/solar_position.h"
+#include "skyview/solar/time_parse.h"
+
+namespace skyview::cli {
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+struct Options {
+  HorizonJobOptions job;
+  std::string time, tz, preview;
+  std::optional<double> lat, lon, elevation;
+  bool soft = false;
+  const CLI::App* app = nullptr;
+};
+
+int run(const Options& o) {
+  const auto started = std::chrono::steady_clock::now();
+  const CLI::App& app = *o.app;
+  // The one direction is the sun's: nothing of the direction set applies.
+  for (const char* name : {"--directions", "--azimuth-origin", "--azimuths", "--max-error"})
+    refuse_unused(app, name, false, "commands with many directions (a shadow is found along the sun's azimuth)");
+  if (!o.tz.empty()) check_time_zone(o.tz);
+  const ParsedTime when = parse_time_option(o.time, o.tz);
+  if (!o.preview.empty()) require_extension(o.preview, {".png"}, "--preview");
+  check_outputs_apart({o.job.output, o.preview}, {o.job.input});
+  HorizonJob job = prepare_horizon_job(o.job, "shadow", {o.preview});
+  check_output_format(o.job.output, o.job.out.format, 2, o.job.out.creation_options);
+  const Terrain& t = job.terrain;
+  std::string site_source;
+  const Site site = raster_sun_site(t, o.job.input, o.lat, o.lon, o.elevation, site_source);
+  const SunPosition sun = solar_position(when.unix_utc, site);
+  if (!(sun.elevation_deg > 0.0)) {
+    throw Error("the sun's centre is " + number_text(std::round(-sun.elevation_deg * 100) / 100) +
+                " degrees below the horizon at " + format_iso_utc(when.unix_utc) + " at " +
+                number_text(site.latitude_deg) + ", " + number_text(site.longitude_deg) + ": no shadows to cast");
+  }
+  // The engine again, turned to the sun.
+  job.engine =
+      make_horizon_engine(job.engine->name(), shadow_horizon_params(job.engine->params(), sun.azimuth_deg * kDegree));
+  ShadowRequest request;
+  request.sun_azimuth = sun.azimuth_deg * kDegree;
+  request.sun_elevation = sun.elevation_deg * kDegree;
+  request.soft = o.soft;
+  request.edge = job.edge;
+  ShadowBands bands;
+  {
+    ThreadLimit limit(o.job.out.threads);
+    with_progress(job, [&](ProgressCounter& progress) {
+      bands = compute_shadow(*job.engine, t, Window::whole(t), request, progress);
+    });
+  }
+  record_edge_cells(job, bands.edge_cells);
+  auto& meta = job.metadata;
+  for (const char* key : {"DIRECTIONS", "AZIMUTH_ORIGIN", "AZIMUTHS", "SECTOR_ROTATION_DEG"}) meta.erase(key);
+  meta["TIME"] = o.time;
+  meta["TIME_UTC"] = format_iso_utc(when.unix_utc);
+  if (!o.tz.empty()) meta["TIME_ZONE"] = o.tz;
+  meta["LATITUDE"] = number_text(site.latitude_deg);
+  meta["LONGITUDE"] = number_text(site.longitude_deg);
+  meta["SITE_SOURCE"] = site_source;
+  meta["SUN_AZIMUTH_DEG"] = number_text(sun.azimuth_deg);
+  meta["SUN_ELEVATION_DEG"] = number_text(sun.elevation_deg);
+  meta["SUN_POSITION"] = "NREL SPA, topocentric, refracted (15 C, 1013.25 mbar)";
+  meta["SHADOW_TEST"] = o.soft ? "visible share of the solar disc (radius 0.2665 deg) above the horizon along the "
+                                 "sun's azimuth, taken level across the disc"
+                               : "the sun's centre above the horizon along the sun's azimuth";
+
+  WriteOptions wo;
+  wo.format = o.job.out.format;
+  wo.creation_options = o.job.out.creation_options;
+  wo.overwrite = o.job.out.overwrite;
+  wo.metadata = meta;
+  const char* first = o.soft ? "sun_fraction" : "sunlit";
+  write_bands(
+      o.job.output, t.width(), t.height(), t.georef,
+      {{first,
+        "1",
+        bands.sunlit.data(),
+        {{"DEFINITION", o.soft ? "share of the solar disc seen, 0..1" : "1 where the sun's centre is seen, else 0"}}},
+       {"incidence_cos",
+        "1",
+        bands.incidence_cos.data(),
+        {{"DEFINITION",
+          "cosine of the sun's direction on the cell's surface (Horn normal); below 0 the "
+          "surface faces away from the sun"}}}},
+      wo);
+  if (!o.preview.empty()) {
+    PreviewSpec spec;
+    spec.title = std::string(first) + " - " + o.job.output;
+    spec.band = first;
+    spec.unit = "1";
+    spec.ramp = ColourRamp::grey;
+    spec.range = std::pair{0.0, 1.0};
+    spec.georef = t.georef;
+    write_raster_preview(o.preview, bands.sunlit, spec, o.job.out.overwrite);
+  }
+  if (!o.job.out.quiet) {
+    double lit = 0;
+    std::int64_t valid = 0;
+    for (float v : bands.sunlit.values()) {
+      if (!std::isnan(v)) lit += v, ++valid;
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    std::fprintf(
+        stderr, "skyview shadow: sun at azimuth %.2f, elevation %.2f deg; %.1f%% of %lld cells sunlit, %.1f s\n",
+        sun.azimuth_deg, sun.elevation_deg, valid ? 100.0 * lit / valid : 0.0, static_cast<long long>(valid), seconds);
+  }
+  return 0;
+}
+
+Runner setup(CLI::App& app) {
+  auto o = std::make_shared<Options>();
+  o->app = &app;
+  add_horizon_job_options(app, o->job);
+  app.add_option("--time", o->time, "The instant, ISO 8601 with offset or zone (as skyview sun)")->required();
+  app.add_option("--tz", o->tz, "IANA zone for --time without an offset");
+  app.add_option("--lat", o->lat, "Latitude, degrees north (default: the raster's centre)");
+  app.add_option("--lon", o->lon, "Longitude, degrees east (default: the raster's centre)");
+  app.add_option("--elevation", o->elevation, "Elevation above sea level, metres (default: the raster's centre)");
+  app.add_flag("--soft", o->soft, "Band sun_fraction: the visible share of the solar disc instead of its centre");
+  app.add_option("--preview", o->preview, "Also write a PNG of the first band");
+  app.footer(
+      "Bands: sunlit (1 where the sun's centre is seen, else 0) or, with --soft, sun_fraction (0..1); incidence_cos. "
+      "See docs/commands/shadow.md.");
+  return [o] { return run(*o); };
+}
+
+const Registration reg("shadow", "Where the sun is seen from every DSM cell at one instant (shadows)", setup);
+
+}  // namespace
+}  // namespace skyview::cli

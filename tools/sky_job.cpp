@@ -1,0 +1,69 @@
+#include "sky_job.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "skyview/core/error.h"
+#include "skyview/raster/raster_site.h"
+
+namespace skyview::cli {
+
+void add_sky_options(CLI::App& app, SkyRequest& r, const std::string& site_default) {
+  app.add_option("--lat", r.latitude, "Latitude, degrees north (" + site_default + ")");
+  app.add_option("--lon", r.longitude, "Longitude, degrees east (" + site_default + ")");
+  app.add_option("--elevation", r.elevation, "Elevation above sea level, metres (for the sun position)");
+  app.add_option("--from", r.from, "Start, ISO 8601 with offset or zone (perez-epw default: the whole file)");
+  app.add_option("--to", r.to, "End (excluded)");
+  app.add_option("--step", r.step, "Time step for analytic skies: 1h, 30m, 10min ...")->capture_default_str();
+  app.add_option("--tz", r.tz, "IANA zone for --from/--to without an offset");
+  app.add_option("--sky", r.sky, "preetham | hosek | perez-epw | isotropic")->capture_default_str();
+  app.add_option("--turbidity", r.turbidity, "Atmospheric turbidity (preetham 2-10, hosek 1-10)")
+      ->capture_default_str();
+  app.add_option("--luminous-efficacy", r.luminous_efficacy, "lm/W turning Preetham luminance into radiance")
+      ->capture_default_str();
+  app.add_option("--epw", r.epw, "EnergyPlus weather file (perez-epw; isotropic from measured data)");
+}
+
+const std::vector<std::string>& sky_option_names() {
+  static const std::vector<std::string> names{"--lat",  "--lon", "--elevation", "--from",      "--to",
+                                              "--step", "--tz",  "--sky",       "--turbidity", "--luminous-efficacy",
+                                              "--epw"};
+  return names;
+}
+
+void check_sky_options(const CLI::App& app, const SkyRequest& r) {
+  check_sky_request(r);
+  refuse_unused(app, "--step", !measured_sky(r), "analytic skies (an EPW gives one step per hourly record)");
+  refuse_unused(app, "--turbidity", preetham_energy(r) || r.sky == "hosek",
+                "--sky preetham, hosek, or isotropic without --epw");
+  refuse_unused(app, "--luminous-efficacy", preetham_energy(r), "--sky preetham, or isotropic without --epw");
+}
+
+Site raster_sun_site(const Terrain& t, const std::string& input, const std::optional<double>& lat,
+                     const std::optional<double>& lon, const std::optional<double>& elevation, std::string& source) {
+  if (lat.has_value() != lon.has_value())
+    throw UsageError("give both --lat and --lon, or neither (the raster's centre)");
+  Site site;
+  if (lat) {
+    site.latitude_deg = *lat;
+    site.longitude_deg = *lon;
+    source = "--lat/--lon";
+  } else {
+    const std::optional<GeoPoint> centre = raster_centre_geographic(t.georef, t.width(), t.height());
+    if (!centre) throw Error("'" + input + "' has no CRS to place the sun: give --lat and --lon");
+    site.latitude_deg = centre->latitude_deg;
+    site.longitude_deg = centre->longitude_deg;
+    source = "the raster's centre";
+  }
+  if (!(std::abs(site.latitude_deg) <= 90.0)) throw UsageError("--lat must be within -90 .. 90");
+  if (!(std::abs(site.longitude_deg) <= 180.0)) throw UsageError("--lon must be within -180 .. 180");
+  const double mid = t.heights(t.width() / 2, t.height() / 2);
+  site.elevation_m = elevation ? *elevation : t.base_height + (std::isnan(mid) ? 0.0 : mid);
+  return site;
+}
+
+void print_warnings(const std::vector<std::string>& warnings) {
+  for (const std::string& w : warnings) std::fprintf(stderr, "Warning: %s\n", w.c_str());
+}
+
+}  // namespace skyview::cli

@@ -1,0 +1,36 @@
+#pragma once
+// The sky options `skyview skymap` and `skyview exposure` share (the sky model and its parameters,
+// the site, the period and its steps, a weather file), and what the commands do with them before
+// the library builds the sky (sky_request.h).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "command.h"
+#include "skyview/raster/terrain.h"
+#include "skyview/sky/sky_request.h"
+
+namespace skyview::cli {
+
+// --lat, --lon, --elevation, --from, --to, --step, --tz, --sky, --turbidity,
+// --luminous-efficacy, --epw into `request`. `site_default` says where --lat/--lon default to
+// ("default with --epw: the file's").
+void add_sky_options(CLI::App& app, SkyRequest& request, const std::string& site_default);
+
+// The sky options' names, for commands that refuse them all (a sky read from a file).
+const std::vector<std::string>& sky_option_names();
+
+// Refuses what the request's sky would not use (--step with an EPW, --turbidity with perez-epw,
+// --luminous-efficacy beyond Preetham's energy) and options that do not go together.
+void check_sky_options(const CLI::App& app, const SkyRequest& request);
+
+// Where the sun is seen from for a raster: --lat/--lon where given (both), else the raster's centre
+// (from its CRS); the elevation from --elevation, else the raster's height at its centre. Throws,
+// naming `input`, where the raster has no CRS and no --lat/--lon are given. `source` says which.
+Site raster_sun_site(const Terrain& terrain, const std::string& input, const std::optional<double>& lat,
+                     const std::optional<double>& lon, const std::optional<double>& elevation, std::string& source);
+
+// "Warning: ..." on stderr for each, even under -q: they change what the numbers mean.
+void print_warnings(const std::vector<std::string>& warnings);
+
+}  // namespace skyview::cli
