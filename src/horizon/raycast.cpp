@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "core/embree_device.h"
 #include "methods.h"
 #include "ray_scan.h"
 #include "skyview/core/error.h"
@@ -26,23 +27,6 @@
 
 namespace skyview::detail {
 namespace {
-
-struct DeviceDeleter {
-  void operator()(RTCDeviceTy* d) const { rtcReleaseDevice(d); }
-};
-struct SceneDeleter {
-  void operator()(RTCSceneTy* s) const { rtcReleaseScene(s); }
-};
-using DevicePtr = std::unique_ptr<RTCDeviceTy, DeviceDeleter>;
-using ScenePtr = std::unique_ptr<RTCSceneTy, SceneDeleter>;
-
-// Embree reports errors through a C callback, which must not throw; it records the first one
-// and compute() turns it into a skyview::Error after building the scene.
-void embree_error(void* user, RTCError code, const char* message) {
-  auto* first = static_cast<std::string*>(user);
-  if (first->empty())
-    first->assign("Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : ""));
-}
 
 // The eye sits exactly on its own vertex, so its rays would hit the triangles around it at
 // distance zero. (Lifting it instead, by 64 float steps of the mesh's extent, 7.6 mm on a 1 km
@@ -85,17 +69,6 @@ void reject_own_triangles(const RTCFilterFunctionNArguments* args) {
 }
 
 // Vertices in metres east/north of the buffer's first cell and height relative to the base.
-// An Embree device whose errors land in `failure` (which must outlive it).
-DevicePtr new_device(std::string& failure) {
-  DevicePtr device(rtcNewDevice(nullptr));
-  if (!device) throw Error("cannot start Embree");
-  if (!rtcGetDeviceProperty(device.get(), RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED)) {
-    throw Error("this Embree was built without filter functions, which the ray cast needs");
-  }
-  rtcSetDeviceErrorFunction(device.get(), embree_error, &failure);
-  return device;
-}
-
 class TerrainMesh {
  public:
   TerrainMesh(RTCDevice device, const Terrain& t, double sign) : t_(t), sign_(sign) {
@@ -292,7 +265,7 @@ class TerrainMesh {
   const Terrain& t_;
   double sign_;
   Jacobian j_;
-  ScenePtr scene_;
+  EmbreeScene scene_;
   int width_ = 0;
   Triangles mesh_;  // the geometry's buffers (Embree owns them)
 };
@@ -322,7 +295,7 @@ class RaycastEngine final : public HorizonEngine {
   void compute_window(const Terrain& terrain, const Window& window, HorizonField& out,
                       ProgressCounter& progress) const override {
     std::string embree_failure;
-    DevicePtr device = new_device(embree_failure);
+    EmbreeDevice device = new_embree_device(embree_failure, /*need_filters=*/true);
     TerrainMesh upper(device.get(), terrain, 1.0);
     std::unique_ptr<TerrainMesh> lower;
     if (p_.lower) lower = std::make_unique<TerrainMesh>(device.get(), terrain, -1.0);
@@ -447,7 +420,7 @@ class RaycastEngine final : public HorizonEngine {
 void raycast_point_horizons(const Terrain& extended, const std::vector<EyePoint>& eyes, int directions,
                             double sector_rotation, double radius, std::vector<float>& out, ProgressCounter* progress) {
   std::string embree_failure;
-  DevicePtr device = new_device(embree_failure);
+  EmbreeDevice device = new_embree_device(embree_failure, /*need_filters=*/true);
   const TerrainMesh mesh(device.get(), extended, 1.0);
   if (!embree_failure.empty()) throw Error(embree_failure);
   const double range = radius > 0.0 ? radius : std::numeric_limits<double>::infinity();
