@@ -7,10 +7,10 @@
 
 #include "skyview/core/error.h"
 #include "skyview/core/number_text.h"
-#include "skyview/preview/raster_preview.h"
 #include "skyview/sky_view/svf_run.h"
 
 #include "horizon_job.h"
+#include "preview_options.h"
 
 namespace skyview::cli {
 namespace {
@@ -34,7 +34,7 @@ std::string band_summary(const SvfBand& band) {
 
 Runner setup(CLI::App& app) {
   auto o = std::make_shared<HorizonJobOptions>();
-  auto preview = std::make_shared<std::string>();
+  auto preview = std::make_shared<PreviewOptions>();
   auto check_cells = std::make_shared<int>(-1);
   auto products = std::make_shared<std::string>(default_svf_products());
   o->azimuth_origin = "grid";  // every band sums over azimuth
@@ -58,12 +58,13 @@ Runner setup(CLI::App& app) {
                  "metadata (SVF_CHECK_*); with --max-error (default 1000 cells) a run whose measured p99 exceeds the "
                  "request runs again with a finer choice; 0: no check")
       ->check(CLI::Range(0, 10000000));
-  app.add_option("--preview", *preview, "Also write a PNG of the first band written (nodata transparent)");
+  add_preview_options(app, *preview,
+                      "Also write a PNG of the first band written, or --preview-band's (docs/previews.md)");
   app.footer(
       "Bands (--products): svf (cosine-weighted, horizontal surface), svf_surface (the cell's tilted surface), "
       "sky_visibility (solid-angle fraction), openness_positive, openness_negative (degrees); raycast with --rays "
       "adds svf_montecarlo and svf_montecarlo_stderr.");
-  return [o, preview, products, check_cells] {
+  return [o, preview, products, check_cells, &app] {
     const RunSummary summary("svf");
     SvfRequest request;
     request.products = *products;
@@ -75,9 +76,12 @@ Runner setup(CLI::App& app) {
       if (c->product == Product::openness_negative) opts.params.lower = true;
     request.horizon = horizon_request(opts);
     check_svf_request(request);
-    HorizonJob job = prepare_horizon_job(opts, "svf", {*preview});
-    if (!preview->empty()) require_extension(*preview, {".png"}, "--preview");
+    HorizonJob job = prepare_horizon_job(opts, "svf", {preview->path});
     const bool monte_carlo = job.engine->name() == "raycast" && job.engine->params().rays > 0;
+    std::vector<std::string> names;
+    for (const SvfProductInfo* c : parse_svf_products(*products)) names.push_back(c->name);
+    if (monte_carlo) names.insert(names.end(), {"svf_montecarlo", "svf_montecarlo_stderr"});
+    const std::size_t drawn = check_preview_options(app, *preview, names);
     check_output_format(o->output, o->out.format,
                         static_cast<int>(parse_svf_products(*products).size()) + (monte_carlo ? 2 : 0),
                         o->out.creation_options);
@@ -98,14 +102,13 @@ Runner setup(CLI::App& app) {
     std::vector<OutputBand> bands;
     for (const SvfBand& b : result.bands) bands.push_back({b.name, b.unit, b.values.data(), b.metadata});
     write_bands(o->output, w, h, job.terrain.georef, bands, wo);
-    if (!preview->empty()) {
-      PreviewSpec spec;
-      spec.band = result.bands.front().name;
-      spec.unit = result.bands.front().unit;
-      spec.title = spec.band + " - " + o->output;
-      spec.georef = job.terrain.georef;
-      if (spec.unit == "1") spec.range = std::make_pair(0.0, 1.0);
-      write_raster_preview(*preview, result.bands.front().values, spec, o->out.overwrite);
+    if (!preview->path.empty()) {
+      const auto it = std::find_if(result.bands.begin(), result.bands.end(),
+                                   [&](const SvfBand& b) { return b.name == names[drawn]; });
+      if (it == result.bands.end())
+        throw Error("the preview's band " + names[drawn] + " was not made (internal error)");
+      const SvfBand& b = *it;
+      write_preview(*preview, b.values, {b.name, b.unit, o->output, job.terrain.georef, {}, {}}, o->out.overwrite);
     }
     summary.print(std::to_string(w) + "x" + std::to_string(h) + " cells, " + std::to_string(bands.size()) +
                       " bands by " + std::string(job.engine->name()) + " with " +
