@@ -5,6 +5,7 @@
 
 #include "horizon_job.h"
 #include "skyview/core/number_text.h"
+#include "skyview/sky_view/horizon_bands.h"
 
 namespace skyview::cli {
 namespace {
@@ -25,16 +26,8 @@ Runner setup(CLI::App& app) {
     HorizonJob job = prepare_horizon_job(opts, "horizon");
     const int w = job.terrain.width(), h = job.terrain.height(), n = job.engine->params().directions;
     const Window whole = Window::whole(job.terrain);
-    std::vector<unsigned char> blank(whole.cells());  // cells written as nodata
     std::int64_t edge_cells = 0;
-    for (int r = 0; r < h; ++r) {
-      for (int c = 0; c < w; ++c) {
-        const bool valid = job.terrain.valid(c, r);
-        const bool leaves = valid && search_circle_leaves_raster(job.terrain, c, r, job.engine->radius());
-        edge_cells += leaves;
-        blank[static_cast<std::size_t>(r) * w + c] = !valid || (job.edge == EdgeMode::nodata && leaves);
-      }
-    }
+    const std::vector<unsigned char> blank = horizon_blank_cells(job, job.terrain, edge_cells);  // written as nodata
     record_edge_cells(job, edge_cells);
     WriteOptions wo;
     wo.format = o->out.format;
@@ -50,21 +43,13 @@ Runner setup(CLI::App& app) {
     // block. Memory does not grow with the number of directions.
     if (!job.engine->streams_directions()) wo.rows_at_once = rows_in_budget(*job.engine, w, kHorizonBlockBytes);
     BandWriter out(o->output, w, h, n, job.terrain.georef, wo);
-    const double rotation = job.sector_rotation * 180.0 / M_PI;
-    const bool uniform = job.sectors.is_uniform();  // named by 360 k / N, as before grid lines
+    const std::vector<DirectionBand> directions = direction_bands(job);
     for (int k = 0; k < n; ++k) {
-      // In [0, 360) to ten significant digits: a set turned by -0.0001° starts at 359.9998961, and
-      // a residue that rounds to 360 reads 0.
-      const double offset = uniform ? 360.0 * k / n : job.sectors.offset[static_cast<std::size_t>(k)] * 180.0 / M_PI;
-      double azimuth = std::fmod(offset + rotation, 360.0);
-      if (azimuth < 0.0) azimuth += 360.0;
-      std::string az = number_text(azimuth);
-      if (std::stod(az) >= 360.0) az = "0";
-      const double width = uniform ? 360.0 / n : 360.0 * job.sectors.share[static_cast<std::size_t>(k)];
-      out.describe(k, {"horizon_azimuth_" + az,
+      const DirectionBand& d = directions[static_cast<std::size_t>(k)];
+      out.describe(k, {"horizon_azimuth_" + d.azimuth_deg,
                        "degree",
                        nullptr,
-                       {{"AZIMUTH_DEG", az}, {"SECTOR_WIDTH_DEG", number_text(width)}}});
+                       {{"AZIMUTH_DEG", d.azimuth_deg}, {"SECTOR_WIDTH_DEG", number_text(d.width_deg)}}});
     }
     std::vector<float> degrees;
     // Rows [row0, row0 + rows) of direction k from its plane of radians over those rows.

@@ -17,7 +17,7 @@ namespace {
 struct SkymapOptions {
   SkyRequest sky;
   std::string output, preview;
-  int size = 512;
+  int size = ExposureOptions{}.width;
   bool no_preview = false;
   OutputOptions out;
   const CLI::App* app = nullptr;

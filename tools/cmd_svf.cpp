@@ -37,7 +37,7 @@ Runner setup(CLI::App& app) {
   auto preview = std::make_shared<std::string>();
   auto check_cells = std::make_shared<int>(-1);
   auto products = std::make_shared<std::string>(default_svf_products());
-  o->azimuth_origin = "grid";  // every band sums over azimuth
+  o->azimuth_origin = default_svf_horizon_request().azimuth_origin;
   add_horizon_job_options(app, *o);
   app.add_option("--products", *products,
                  "Bands to write, in this order; without openness_negative the lowest angles are not computed "
