@@ -7,6 +7,7 @@
 #include "horizon_job.h"
 #include "preview_options.h"
 #include "skyview/core/number_text.h"
+#include "skyview/sky_view/horizon_bands.h"
 
 namespace skyview::cli {
 namespace {
@@ -19,17 +20,8 @@ std::int64_t write_horizons(const HorizonJob& job, const Terrain& terrain, const
                             int out_row0, BandWriter& out, ProgressCounter& progress, int drawn = -1,
                             Grid<float>* drawn_values = nullptr) {
   const int n = job.engine->params().directions;
-  std::vector<unsigned char> blank(window.cells());  // cells written as nodata
   std::int64_t edge_cells = 0;
-  for (int r = 0; r < window.rows; ++r) {
-    for (int c = 0; c < window.cols; ++c) {
-      const int tc = window.col0 + c, tr = window.row0 + r;
-      const bool valid = terrain.valid(tc, tr);
-      const bool leaves = valid && search_circle_leaves_raster(terrain, tc, tr, job.engine->radius());
-      edge_cells += leaves;
-      blank[static_cast<std::size_t>(r) * window.cols + c] = !valid || (job.edge == EdgeMode::nodata && leaves);
-    }
-  }
+  const std::vector<unsigned char> blank = horizon_blank_cells(job, terrain, window, edge_cells);  // nodata
   std::vector<float> degrees;
   // Rows [row0, row0 + rows) of the window for direction k from its plane of radians over those rows.
   auto write_rows = [&](int k, int row0, int rows, const float* radians) {
@@ -101,31 +93,20 @@ Runner setup(CLI::App& app) {
     // window into the format's default blocks.)
     if (!job.engine->streams_directions() && !job.tiles.tiled)
       wo.rows_at_once = rows_in_budget(*job.engine, w, kHorizonBlockBytes);
-    const double rotation = job.sector_rotation * 180.0 / M_PI;
-    const bool uniform = job.sectors.is_uniform();  // named by 360 k / N, as before grid lines
-    std::vector<std::string> names, azimuths;
-    std::vector<double> widths;
-    for (int k = 0; k < n; ++k) {
-      // In [0, 360) to ten significant digits: a set turned by -0.0001° starts at 359.9998961, and
-      // a residue that rounds to 360 reads 0.
-      const double offset = uniform ? 360.0 * k / n : job.sectors.offset[static_cast<std::size_t>(k)] * 180.0 / M_PI;
-      double azimuth = std::fmod(offset + rotation, 360.0);
-      if (azimuth < 0.0) azimuth += 360.0;
-      std::string az = number_text(azimuth);
-      if (std::stod(az) >= 360.0) az = "0";
-      widths.push_back(uniform ? 360.0 / n : 360.0 * job.sectors.share[static_cast<std::size_t>(k)]);
-      azimuths.push_back(az);
-      names.push_back("horizon_azimuth_" + az);
-    }
+    const std::vector<DirectionBand> directions = direction_bands(job);
+    std::vector<std::string> names;
+    for (const DirectionBand& d : directions) names.push_back("horizon_azimuth_" + d.azimuth_deg);
     const int drawn = static_cast<int>(check_preview_options(app, *preview, names));
     Grid<float> drawn_values;
     if (!preview->path.empty()) drawn_values = Grid<float>(w, h);
     BandWriter out(o->output, w, h, n, job.georef(), wo);
     for (int k = 0; k < n; ++k) {
       const std::size_t i = static_cast<std::size_t>(k);
-      out.describe(
-          k,
-          {names[i], "degree", nullptr, {{"AZIMUTH_DEG", azimuths[i]}, {"SECTOR_WIDTH_DEG", number_text(widths[i])}}});
+      out.describe(k, {names[i],
+                       "degree",
+                       nullptr,
+                       {{"AZIMUTH_DEG", directions[i].azimuth_deg},
+                        {"SECTOR_WIDTH_DEG", number_text(directions[i].width_deg)}}});
     }
     std::int64_t edge_cells = 0;
     with_progress(job, [&](ProgressCounter& progress) {

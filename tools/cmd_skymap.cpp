@@ -18,7 +18,7 @@ struct SkymapOptions {
   SkyRequest sky;
   std::string output;
   PreviewOptions preview;
-  int size = 512;
+  int size = ExposureOptions{}.width;
   bool no_preview = false;
   OutputOptions out;
   const CLI::App* app = nullptr;

@@ -93,7 +93,7 @@ Runner setup(CLI::App& app) {
   auto check_cells = std::make_shared<int>(-1);
   auto products = std::make_shared<std::string>(default_svf_products());
   auto tiling = std::make_shared<TileRequest>();
-  o->azimuth_origin = "grid";  // every band sums over azimuth
+  o->azimuth_origin = default_svf_horizon_request().azimuth_origin;
   add_horizon_job_options(app, *o);
   add_tiling_options(app, tiling->options);
   app.add_option("--products", *products,
