@@ -227,7 +227,7 @@ int run(const CLI::App& app, Options& o) {
     }
     write_raster_preview(o.preview, *g, ps, o.out.overwrite);
   }
-  double diff_sum = 0, diff_abs = 0;
+  double diff_sum = 0, diff_abs = 0, large_abs = 0;
   std::size_t diff_n = 0;
   if (reference) {
     Grid<float> diff(view.width, view.height, std::numeric_limits<float>::quiet_NaN());
@@ -236,6 +236,7 @@ int run(const CLI::App& app, Options& o) {
       diff.values()[i] = bands.svf.values()[i] - reference->svf.values()[i];
       diff_sum += diff.values()[i];
       diff_abs += std::abs(diff.values()[i]);
+      large_abs += std::abs(bands.svf_large.values()[i] - reference->svf.values()[i]);
       ++diff_n;
     }
     if (!o.diff_preview.empty()) {
@@ -260,7 +261,8 @@ int run(const CLI::App& app, Options& o) {
                      ", mean svf " + number_text(hits ? std::round(mean_svf / hits * 1000) / 1000 : 0.0);
   if (diff_n) {
     what += ", svf - reference mean " + number_text(std::round(diff_sum / diff_n * 1000) / 1000) + " mean abs " +
-            number_text(std::round(diff_abs / diff_n * 1000) / 1000);
+            number_text(std::round(diff_abs / diff_n * 1000) / 1000) + " (svf_large mean abs " +
+            number_text(std::round(large_abs / diff_n * 1000) / 1000) + ")";
   }
   summary.print(what, o.out.quiet);
   return 0;

@@ -31,34 +31,111 @@ struct Region {
 };
 
 // Section 5.1 in one direction: horizon and opening angles from the zenith map's solid parts.
+// Where a sample raises the horizon or ends the cover, the step from the previous sample is halved
+// kBisections times to find the wall's face or the cover's edge (geometrically spaced samples
+// would otherwise see a face up to a step too far, and the sky too large).
+constexpr int kBisections = 3;
+
+class ZenithMarch {
+ public:
+  ZenithMarch(const ZenithDepthMap& z, double qx, double qy, double pz, double ux, double uy)
+      : z_(z), qx_(qx), qy_(qy), pz_(pz), ux_(ux), uy_(uy) {}
+
+  // The texel at distance d: its heights, or false outside the map.
+  bool texel(double d, int& count, const float*& heights) const {
+    const int col = z_.col_of(qx_ + d * ux_), row = z_.row_of(qy_ + d * uy_);
+    if (!z_.in_map(col, row)) return false;
+    count = z_.count(col, row);
+    heights = z_.heights(col, row);
+    return true;
+  }
+  double bottom(const float* hs, int c, int i) const {
+    return i + 1 < c ? hs[i + 1] : -std::numeric_limits<double>::infinity();
+  }
+  bool above(double bottom) const { return bottom > pz_ + kEps; }
+  // The angle of the highest part at distance d that reaches down to the point's height (all parts
+  // when `all`), or -inf.
+  double horizon_at(double d, bool all) const {
+    int c;
+    const float* hs;
+    double h = -std::numeric_limits<double>::infinity();
+    if (!texel(d, c, hs)) return h;
+    for (int i = 0; i < c; i += 2) {
+      if (all || !above(bottom(hs, c, i))) h = std::max(h, std::atan2(hs[i] - pz_, d));
+    }
+    return h;
+  }
+  // The lowest angle of the bottoms of parts wholly above the point at distance d, or +inf if none.
+  double cover_at(double d) const {
+    int c;
+    const float* hs;
+    double h = std::numeric_limits<double>::infinity();
+    if (!texel(d, c, hs)) return h;
+    for (int i = 0; i < c; i += 2) {
+      const double b = bottom(hs, c, i);
+      if (above(b)) h = std::min(h, std::atan2(b - pz_, d));
+    }
+    return h;
+  }
+
+  static constexpr double kEps = 0.05;
+
+ private:
+  const ZenithDepthMap& z_;
+  double qx_, qy_, pz_, ux_, uy_;
+};
+
 Region march_zenith(const ZenithDepthMap& z, double qx, double qy, double pz, double ux, double uy,
                     const double* distances, int samples, double opening_max) {
+  const ZenithMarch m(z, qx, qy, pz, ux, uy);
   Region r;
   r.marched = true;
   bool run = true;  // every sample so far has a solid part wholly above the point
-  const double eps = 0.05;
+  double previous = 0.0;
   for (int j = 0; j < samples; ++j) {
     const double d = distances[j];
-    const int col = z.col_of(qx + d * ux), row = z.row_of(qy + d * uy);
-    if (!z.in_map(col, row)) break;  // nothing beyond the scene
-    const int c = z.count(col, row);
-    const float* hs = z.heights(col, row);
-    bool overhead = false;
-    for (int i = 0; i < c; i += 2) {
-      const double top = hs[i];
-      const double bottom = i + 1 < c ? hs[i + 1] : -std::numeric_limits<double>::infinity();
-      if (bottom > pz + eps && run) {
-        overhead = true;
-        r.opening = std::min(r.opening, std::atan2(bottom - pz, d));
-      } else {
-        r.horizon = std::max(r.horizon, std::atan2(top - pz, d));
+    int c;
+    const float* hs;
+    if (!m.texel(d, c, hs)) break;  // nothing beyond the scene
+    // While under cover, parts above the point bound the opening; after it, they occlude by their tops.
+    const double cover = run ? m.cover_at(d) : std::numeric_limits<double>::infinity();
+    const bool overhead = std::isfinite(cover);
+    const double horizon = m.horizon_at(d, !run);
+    if (overhead) r.opening = std::min(r.opening, cover);
+    if (horizon > r.horizon) {
+      r.horizon = horizon;
+      double lo = previous, hi = d;
+      for (int k = 0; k < kBisections; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        const double a = m.horizon_at(mid, !run);
+        if (a > r.horizon) {
+          r.horizon = a;
+          hi = mid;
+        } else {
+          lo = mid;
+        }
       }
     }
-    if (run && !overhead) run = false;
+    if (run && !overhead) {
+      run = false;
+      double lo = previous, hi = d;  // the cover's edge
+      const bool covered = j > 0 || std::isfinite(m.cover_at(0.0));
+      for (int k = 0; k < kBisections && covered; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        const double a = m.cover_at(mid);
+        if (std::isfinite(a)) {
+          r.opening = std::min(r.opening, a);
+          lo = mid;
+        } else {
+          hi = mid;
+        }
+      }
+    }
     if (run && opening_max > 0 && d > opening_max) {
       r.opening = r.horizon;  // the opening is too far to trust: closed
       break;
     }
+    previous = d;
   }
   if (run) r.opening = std::min(r.opening, r.horizon);  // under cover all the way: nothing seen
   return r;
@@ -190,7 +267,7 @@ TwoScaleBands two_scale_visibility(const ViewBuffers& v, const Camera& cam, cons
         if (along <= 0 && n[2] <= 0) continue;  // wholly behind the surface
         r = march_zenith(zenith, qx, qy, p[2], ux, uy, distances.data(), o.samples, o.opening_max_distance);
         large += slice * cosine_weighted_slice(along, n[2], r.horizon, r.opening);
-        if (o.combine == ScaleCombination::intersect) {
+        if (o.combine == ScaleCombination::intersect && o.fine_scale) {
           r.horizon = std::max(r.horizon, fine_horizon(v, cam, p, ux, uy, o, jitter));
           merged += slice * cosine_weighted_slice(along, n[2], r.horizon, r.opening);
         }
@@ -202,11 +279,11 @@ TwoScaleBands two_scale_visibility(const ViewBuffers& v, const Camera& cam, cons
           total += e;
         }
       }
-      const double fine = fine_visibility(v, cam, col, row, p, n, o, rng);
+      const double fine = o.fine_scale ? fine_visibility(v, cam, col, row, p, n, o, rng) : 1.0;
       b.svf_large.values()[i] = float(std::min(1.0, large));
       b.svf_fine.values()[i] = float(fine);
       const bool multiply = o.combine == ScaleCombination::multiply;
-      b.svf.values()[i] = float(multiply ? std::min(1.0, large) * fine : std::min(1.0, merged));
+      b.svf.values()[i] = float(multiply || !o.fine_scale ? std::min(1.0, large) * fine : std::min(1.0, merged));
       if (sampler) {
         const double w = multiply ? fine : 1.0;
         b.exposure_direct.values()[i] = float(total.direct * w / 1000);

@@ -55,6 +55,9 @@ std::vector<float> column(const Scene& scene, const RayScene& rays, float x, flo
       inside = false;
     }
   }
+  // A bottom with nothing found below it: the surface under it coincides (a floor on the ground,
+  // which the next ray's start skipped) or there is none; either way the solid is taken to go on.
+  if (out.size() % 2 == 0 && !out.empty()) out.pop_back();
   if (static_cast<int>(out.size()) > o.max_layers) {
     truncated = true;
     out.resize(o.max_layers % 2 ? o.max_layers : o.max_layers - 1);
@@ -140,7 +143,7 @@ void ZenithDepthMap::save(const std::string& path, const Scene& scene, const Wri
   wo.metadata["ZENITH_MAX_LAYERS"] = std::to_string(max_layers_);
   wo.metadata["ZENITH_TRUNCATED_TEXELS"] = std::to_string(truncated_);
   wo.metadata["ZENITH_LAYERS"] =
-      "heights from the top down alternate top and bottom of solid parts; an odd count: the last reaches down";
+      "heights from the top down alternate top and bottom of solid parts; the last reaches down";
   wo.metadata["SCENE_TRIANGLES"] = std::to_string(scene.triangle_count());
   write_bands(path, width_, height_, g, out, wo);
 }
@@ -177,7 +180,7 @@ ZenithDepthMap ZenithDepthMap::load(const std::string& path, const Scene& scene)
   const auto b = scene.bounds();
   const double tol = m.resolution_;
   if (m.x0_ > b[0][0] + tol || m.y0_ < b[1][1] - tol || m.x0_ + m.width_ * m.resolution_ < b[1][0] - tol ||
-      m.y0_ - m.height_ * m.resolution_ > b[0][1] - tol) {
+      m.y0_ - m.height_ * m.resolution_ > b[0][1] + tol) {
     throw Error("--zenith '" + path + "' does not cover the scene (another scene or another CRS?)");
   }
   const std::size_t n = static_cast<std::size_t>(m.width_) * m.height_;

@@ -153,10 +153,10 @@ TEST(RenderVisibility, PorchGetsMoreSkyWithTheOpeningAngle) {
 
 TEST(RenderVisibility, GrazingPlaneStaysInRange) {
   Scene s;
-  s.meshes.push_back(ground_mesh(3000));
+  s.meshes.push_back(ground_mesh(600));
   CameraSpec spec;
   spec.position = {0, 0, 0.5};
-  spec.look_at = {1000, 0, 0};
+  spec.look_at = {500, 0, 0};
   spec.width = 64;
   spec.height = 48;
   spec.fov_deg = 10;

@@ -41,6 +41,7 @@ struct TwoScaleOptions {
   double opening_max_distance = 0;  // metres; 0: no limit
   double fine_radius = 3.0;         // metres, the fine scale's reach
   ScaleCombination combine = ScaleCombination::multiply;
+  bool fine_scale = true;  // false: the large scale alone (svf_fine = 1)
   std::uint64_t seed = 1;
 };
 

@@ -11,9 +11,9 @@
 // through a surface whose triangle faces down (outward winding, as CityGML requires); a solid
 // without a bottom (an open-bottomed building) is thus solid down to what is under it, and an
 // inward-wound mesh reads as solid: both err towards occlusion. Gaps thinner than `merge_gap`
-// (a building's floor on the terrain) are closed. An odd count means the last solid reaches down
-// without end; where a texel has more surfaces than `max_layers`, the deepest are dropped and the
-// last kept top reaches down (counted in `truncated`).
+// (a building's floor on the terrain) are closed. The count is odd: the last solid reaches down
+// without end (a bottom with nothing under it is dropped); where a texel has more surfaces than `max_layers`, the
+// deepest are dropped and the last kept top reaches down (counted in `truncated`).
 #include <cmath>
 #include <cstdint>
 #include <string>
