@@ -70,8 +70,8 @@ std::unique_ptr<skyview::Scene> load(const std::string& name) {
 
 // The first hits of a width x height pinhole camera at `eye` looking at `target` (vertical field
 // of view `fov_deg`), with their normals turned towards the eye.
-skyview::ShadowReceivers camera_hits(const skyview::RayScene& rays, Vec3f eye, Vec3f target, double fov_deg,
-                                     int width, int height) {
+skyview::ShadowReceivers camera_hits(const skyview::RayScene& rays, Vec3f eye, Vec3f target, double fov_deg, int width,
+                                     int height) {
   auto sub = [](Vec3f a, Vec3f b) { return Vec3f{a[0] - b[0], a[1] - b[1], a[2] - b[2]}; };
   auto norm = [](Vec3f a) {
     const float n = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);

@@ -44,8 +44,8 @@ void cascaded_visibility(const RayScene& rays, const LightFrame& frame, const st
       cascade_splits(near, far, o.cascades, hybrid ? o.hsm_split_lambda : o.split_lambda);
   std::vector<std::vector<std::size_t>> members(static_cast<std::size_t>(o.cascades));
   for (std::size_t k = 0; k < points.size(); ++k) {
-    const int c = static_cast<int>(std::upper_bound(splits.begin() + 1, splits.end() - 1, distance[k]) -
-                                   (splits.begin() + 1));
+    const int c =
+        static_cast<int>(std::upper_bound(splits.begin() + 1, splits.end() - 1, distance[k]) - (splits.begin() + 1));
     members[static_cast<std::size_t>(c)].push_back(k);
   }
   out.visibility.assign(points.size(), 0.0f);
@@ -60,8 +60,8 @@ void cascaded_visibility(const RayScene& rays, const LightFrame& frame, const st
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, which.size(), 512), [&](const auto& range) {
       for (std::size_t q = range.begin(); q != range.end(); ++q) {
         const std::size_t k = which[q];
-        const double v = hybrid ? layered_lookup(map, bounds, receivers[k], o, o.layer_overlap)
-                                : pcf_lookup(map, receivers[k], o);
+        const double v =
+            hybrid ? layered_lookup(map, bounds, receivers[k], o, o.layer_overlap) : pcf_lookup(map, receivers[k], o);
         out.visibility[k] = static_cast<float>(v);
         out.texel[k] = static_cast<float>(map.texel);
       }

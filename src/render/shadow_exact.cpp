@@ -44,9 +44,9 @@ std::vector<Vec3> disc_directions(const Vec3& d, const Vec3& u, const Vec3& v, d
 std::vector<float> exact_visibility(const RayScene& rays, const Vec3& sun, const ShadowReceivers& receivers,
                                     const ShadowOptions& options) {
   const LightFrame frame(sun, rays.bounds());
-  const std::vector<Vec3> directions = options.soft ? disc_directions(frame.d, frame.u, frame.v,
-                                                                      options.sun_angular_radius, options.soft_samples)
-                                                    : std::vector<Vec3>{frame.d};
+  const std::vector<Vec3> directions =
+      options.soft ? disc_directions(frame.d, frame.u, frame.v, options.sun_angular_radius, options.soft_samples)
+                   : std::vector<Vec3>{frame.d};
   std::vector<float> out(receivers.points.size(), 0.0f);
   const bool normals = !receivers.normals.empty();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size(), 256), [&](const auto& range) {

@@ -40,7 +40,7 @@ std::vector<LightReceiver> light_receivers(const LightFrame& frame, const Shadow
 struct DepthMap {
   double x0 = 0, y0 = 0, texel = 1;
   int nx = 0, ny = 0;
-  std::vector<float> depth;  // nx·ny, rows of constant j
+  std::vector<float> depth;        // nx·ny, rows of constant j
   float min_hit = 0, max_hit = 0;  // over the texels whose ray met the scene
 
   float at(int i, int j) const { return depth[static_cast<std::size_t>(j) * nx + i]; }

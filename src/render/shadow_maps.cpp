@@ -18,14 +18,12 @@ namespace {
 
 constexpr int kMinMapSize = 8;
 
-std::string bytes_text(double bytes) {
-  return number_text(std::round(bytes / (1 << 20))) + " MiB";
-}
+std::string bytes_text(double bytes) { return number_text(std::round(bytes / (1 << 20))) + " MiB"; }
 
 void check_count(const char* name, int value, int lo, int hi) {
   if (value < lo || value > hi) {
-    throw UsageError(std::string(name) + ": " + std::to_string(value) + " is out of range; give " +
-                     std::to_string(lo) + " .. " + std::to_string(hi));
+    throw UsageError(std::string(name) + ": " + std::to_string(value) + " is out of range; give " + std::to_string(lo) +
+                     " .. " + std::to_string(hi));
   }
 }
 
@@ -40,12 +38,18 @@ void check_share(const char* name, double value, bool open_top) {
 
 std::string shadow_method_name(ShadowMethod method) {
   switch (method) {
-    case ShadowMethod::exact: return "exact";
-    case ShadowMethod::pcf: return "pcf";
-    case ShadowMethod::vsm: return "vsm";
-    case ShadowMethod::lvsm: return "lvsm";
-    case ShadowMethod::csm: return "csm";
-    case ShadowMethod::hsm: return "hsm";
+    case ShadowMethod::exact:
+      return "exact";
+    case ShadowMethod::pcf:
+      return "pcf";
+    case ShadowMethod::vsm:
+      return "vsm";
+    case ShadowMethod::lvsm:
+      return "lvsm";
+    case ShadowMethod::csm:
+      return "csm";
+    case ShadowMethod::hsm:
+      return "hsm";
   }
   return "exact";
 }
@@ -133,9 +137,15 @@ void single_map_visibility(const RayScene& rays, const LightFrame& frame, const 
     for (std::size_t k = range.begin(); k != range.end(); ++k) {
       double v = 0.0;
       switch (method) {
-        case ShadowMethod::pcf: v = pcf_lookup(map, receivers[k], o); break;
-        case ShadowMethod::vsm: v = variance_lookup(map, receivers[k], o, -inf, inf); break;
-        default: v = layered_lookup(map, bounds, receivers[k], o, o.layer_overlap); break;
+        case ShadowMethod::pcf:
+          v = pcf_lookup(map, receivers[k], o);
+          break;
+        case ShadowMethod::vsm:
+          v = variance_lookup(map, receivers[k], o, -inf, inf);
+          break;
+        default:
+          v = layered_lookup(map, bounds, receivers[k], o, o.layer_overlap);
+          break;
       }
       out.visibility[k] = static_cast<float>(v);
     }
@@ -151,8 +161,9 @@ void single_map_visibility(const RayScene& rays, const LightFrame& frame, const 
 ShadowResult sun_visibility(const RayScene& rays, const Scene& scene, Vec3f sun_direction,
                             const ShadowReceivers& receivers, ShadowMethod method, const ShadowOptions& options) {
   (void)scene;  // the hierarchy holds the geometry; the scene is the caller's promise that they match
-  const double len = std::sqrt(double(sun_direction[0]) * sun_direction[0] +
-                               double(sun_direction[1]) * sun_direction[1] + double(sun_direction[2]) * sun_direction[2]);
+  const double len =
+      std::sqrt(double(sun_direction[0]) * sun_direction[0] + double(sun_direction[1]) * sun_direction[1] +
+                double(sun_direction[2]) * sun_direction[2]);
   if (!(len > 0.0) || !std::isfinite(len)) throw Error("the sun's direction is zero or not a number");
   const double elevation = std::asin(std::clamp(sun_direction[2] / len, -1.0, 1.0)) * 180.0 / std::numbers::pi;
   if (!(elevation > 0.0)) {

@@ -41,8 +41,8 @@ double layered_lookup(const DepthMap& map, const std::vector<double>& bounds, co
   k = std::clamp(k, 0, layers - 1);
   // The warp starts `overlap` of the layer's depth before it, so that a receiver near its layer's
   // front is not as close to the occluders clamped there as it is to its own surface.
-  const double width = std::isfinite(bounds[k + 1]) ? bounds[k + 1] - bounds[k]
-                                                    : (k > 0 ? bounds[k] - bounds[k - 1] : 1.0);
+  const double width =
+      std::isfinite(bounds[k + 1]) ? bounds[k + 1] - bounds[k] : (k > 0 ? bounds[k] - bounds[k - 1] : 1.0);
   const double lo = bounds[k] - overlap * width, hi = bounds[k + 1];
   return variance_lookup(map, r, o, lo, hi);
 }

@@ -14,14 +14,17 @@
 namespace skyview::test {
 
 inline SceneMesh ground_square(float half) {
-  return {"ground", "test", {{-half, -half, 0}, {half, -half, 0}, {half, half, 0}, {-half, half, 0}},
+  return {"ground",
+          "test",
+          {{-half, -half, 0}, {half, -half, 0}, {half, half, 0}, {-half, half, 0}},
           {{0, 1, 2}, {0, 2, 3}}};
 }
 
 // A closed box over [lo, hi].
 inline SceneMesh box(const std::string& name, Vec3f lo, Vec3f hi) {
   SceneMesh m{name, "test", {}, {}};
-  for (int i = 0; i < 8; ++i) m.vertices.push_back({i & 1 ? hi[0] : lo[0], i & 2 ? hi[1] : lo[1], i & 4 ? hi[2] : lo[2]});
+  for (int i = 0; i < 8; ++i)
+    m.vertices.push_back({i & 1 ? hi[0] : lo[0], i & 2 ? hi[1] : lo[1], i & 4 ? hi[2] : lo[2]});
   // Two triangles per face, vertex index bits: x = 1, y = 2, z = 4.
   m.triangles = {{0, 3, 1}, {0, 2, 3}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
                  {2, 7, 3}, {2, 6, 7}, {0, 6, 2}, {0, 4, 6}, {1, 3, 7}, {1, 7, 5}};
@@ -40,9 +43,8 @@ inline SceneMesh dsm_mesh(const Terrain& t) {
                           static_cast<float>(t.base_height + t.heights.values()[i])});
   }
   for (const SurfaceMesh::SkirtVertex& s : sm.skirt_vertices) {
-    m.vertices.push_back(
-        {static_cast<float>(g.x_of(s.col, s.row)), static_cast<float>(g.y_of(s.col, s.row)),
-         static_cast<float>(t.base_height + s.z)});
+    m.vertices.push_back({static_cast<float>(g.x_of(s.col, s.row)), static_cast<float>(g.y_of(s.col, s.row)),
+                          static_cast<float>(t.base_height + s.z)});
   }
   for (std::size_t k = 0; k + 2 < sm.triangles.size(); k += 3) {
     m.triangles.push_back({sm.triangles[k], sm.triangles[k + 1], sm.triangles[k + 2]});
