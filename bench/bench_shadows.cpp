@@ -6,8 +6,10 @@
 // the first hits of a 400 x 300 pinhole camera's rays. Items are receivers.
 // Run: build/bench_shadows --benchmark_min_time=0.5
 #include <benchmark/benchmark.h>
+#include <ogr_spatialref.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -55,15 +57,24 @@ std::unique_ptr<skyview::Scene> load(const std::string& name) {
   }
   if (name == "district") {
     const std::string path = temp_path("district.gpkg");
-    const skyview::SyntheticDistrict d = skyview::synthetic_district(0, 0, 256);
+    const skyview::SyntheticDistrict d = skyview::synthetic_district(500000, 6400000, 256);
     std::filesystem::remove(path);
-    skyview::write_district_footprints(path, d, "EPSG:32633", true);
+    OGRSpatialReference utm;
+    utm.importFromEPSG(32633);
+    char* wkt = nullptr;
+    utm.exportToWkt(&wkt);
+    const std::string crs = wkt;
+    CPLFree(wkt);
+    skyview::write_district_footprints(path, d, crs, true);
     o.height_field = "height";
     o.base_field = "base";
     o.absolute_heights = false;
     return std::make_unique<skyview::Scene>(skyview::load_scene({path}, o));
   }
-  const std::string berlin = std::string(SKYVIEW_SHARED_DIR) + "/sample_data/city3d/berlin_sample.citygml";
+  // SKYVIEW_SHARED_DIR in the environment overrides the build's (a worktree's ../shared).
+  const char* shared = std::getenv("SKYVIEW_SHARED_DIR");
+  const std::string berlin =
+      std::string(shared ? shared : SKYVIEW_SHARED_DIR) + "/sample_data/city3d/berlin_sample.citygml";
   if (!std::filesystem::exists(berlin)) return nullptr;
   return std::make_unique<skyview::Scene>(skyview::load_scene({berlin}, o));
 }
