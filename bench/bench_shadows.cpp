@@ -152,7 +152,7 @@ void run(benchmark::State& state, const std::string& name, ShadowMethod method) 
     r = skyview::sun_visibility(*v->rays, *v->scene, kSun, v->receivers, method, o);
     benchmark::DoNotOptimize(r.visibility.data());
   }
-  const skyview::ShadowError e = skyview::shadow_error(v->receivers, v->exact, r);
+  const skyview::ShadowError e = skyview::shadow_error(*v->rays, kSun, v->receivers, v->exact, r, o);
   state.counters["wrong%"] = 100 * e.wrong_share();
   state.counters["edge%"] = 100 * e.share(e.wrong_edge);
   state.counters["interior%"] = 100 * e.share(e.wrong_interior);
@@ -161,6 +161,8 @@ void run(benchmark::State& state, const std::string& name, ShadowMethod method) 
   state.counters["map_ms"] = 1000 * r.map_seconds;
   state.counters["lookup_ms"] = 1000 * r.lookup_seconds;
   state.counters["MiB"] = static_cast<double>(r.map_bytes) / (1 << 20);
+  state.counters["edges%"] = 100 * e.share(e.edge_receivers);
+  state.counters["mean_abs"] = e.mean_abs;
   state.counters["receivers"] = static_cast<double>(v->receivers.points.size());
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(v->receivers.points.size()));
 }

@@ -10,6 +10,7 @@
 #include "render/shadow_test_scenes.h"
 #include "skyview/core/error.h"
 #include "skyview/exposure/shadow.h"
+#include "skyview/render/shadow_error.h"
 #include "skyview/render/shadow_maps.h"
 #include "skyview/scene/ray_scene.h"
 #include "skyview/synthetic/synthetic.h"
@@ -272,6 +273,47 @@ TEST(ShadowMaps, BadOptionsGiveOneLineNamingTheOption) {
   EXPECT_EQ(parse_shadow_method("hsm"), ShadowMethod::hsm);
   rec.normals = {{0, 0, 1}};
   EXPECT_THROW(sun_visibility(rays, scene, sun, rec, ShadowMethod::exact), UsageError);
+}
+
+}  // namespace
+}  // namespace skyview
+
+namespace skyview {
+namespace {
+
+// The error measure: on the box, a map's wrong receivers all lie within two texels of the exact
+// shadow's outline; a receiver flipped by hand far from it counts as an interior error of its kind.
+TEST(ShadowError, BoxMapErrorsLieOnTheOutline) {
+  const Sun sun{200, 35};
+  const BoxCase c(sun, 0.05);
+  const RayScene rays(c.scene);
+  const Vec3f d = sun_direction_of(sun.azimuth_deg * kDeg, sun.elevation_deg * kDeg);
+  const ShadowResult exact = sun_visibility(rays, c.scene, d, c.receivers, ShadowMethod::exact);
+  ShadowOptions o;
+  o.map_size = 256;
+  ShadowResult pcf = sun_visibility(rays, c.scene, d, c.receivers, ShadowMethod::pcf, o);
+  ShadowError e = shadow_error(rays, d, c.receivers, exact, pcf, o);
+  EXPECT_EQ(e.receivers, c.receivers.points.size());
+  EXPECT_GT(e.wrong, 0u);
+  EXPECT_EQ(e.wrong_interior, 0u);
+  EXPECT_EQ(e.wrong, e.wrong_edge);
+  EXPECT_EQ(e.wrong, e.leaks + e.acne);
+  // The outline is about 2·(10 + 2·20/tan 35°)... long; its two-texel band holds a few percent of
+  // the ground grid's receivers.
+  EXPECT_GT(e.share(e.edge_receivers), 0.005);
+  EXPECT_LT(e.share(e.edge_receivers), 0.1);
+  // Receiver 0 (the box's foot, deep in shadow) and the last of the ray (far out in the sun).
+  pcf.visibility[0] = 1.0f;
+  pcf.visibility[c.line - 1] = 0.0f;
+  const ShadowError flipped = shadow_error(rays, d, c.receivers, exact, pcf, o);
+  EXPECT_EQ(flipped.wrong_interior, 2u);
+  EXPECT_EQ(flipped.leaks, e.leaks + 1);
+  EXPECT_EQ(flipped.acne, e.acne + 1);
+  // The exact method against itself: nothing wrong, no edges (no texel).
+  e = shadow_error(rays, d, c.receivers, exact, exact, o);
+  EXPECT_EQ(e.wrong, 0u);
+  EXPECT_EQ(e.edge_receivers, 0u);
+  EXPECT_EQ(e.mean_abs, 0.0);
 }
 
 }  // namespace
