@@ -36,8 +36,8 @@ std::string range_problem(const std::string& text, double& lo, double& hi) {
 void add_preview_options(CLI::App& app, PreviewOptions& o, const std::string& help) {
   app.add_option("--preview", o.path, help);
   app.add_option("--preview-range", o.range,
-                 "The preview's colour ramp from MIN to MAX (e.g. 0,1), so that previews compare; default: the 2nd "
-                 "to 98th percentile of the band drawn")
+                 "The preview's colour ramp from MIN to MAX in the band's unit (e.g. 0,1), so that previews "
+                 "compare; default: stretched to the band (docs/previews.md)")
       ->check(CLI::Validator(
           [](std::string& text) {
             double lo = 0, hi = 0;

@@ -122,9 +122,13 @@ int draw_legend(cv::Mat& canvas, int x, int y, int bar_height, const PreviewSpec
     put(canvas, tick_text(v, step), {x + kBarWidth + 8, ty + 5}, 0.42);
   }
   int below = top + bar_height + 18;
-  put(canvas, spec.range ? "range as given" : "2nd-98th percentile", {x, below}, 0.4);
-  put(canvas, std::string(ramp_name(spec.ramp)) + ", nodata clear", {x, below + 16}, 0.4);
-  return below + 16;
+  // The ends themselves: round ticks seldom fall on them.
+  char ends[64];
+  std::snprintf(ends, sizeof ends, "%.4g to %.4g", lo, hi);
+  put(canvas, ends, {x, below}, 0.4);
+  put(canvas, spec.range ? "range as given" : "2nd-98th percentile", {x, below + 16}, 0.4);
+  put(canvas, std::string(ramp_name(spec.ramp)) + ", nodata clear", {x, below + 32}, 0.4);
+  return below + 32;
 }
 
 }  // namespace
@@ -146,11 +150,11 @@ void write_raster_preview(const std::string& path, const Grid<float>& values, co
 
   const int map_x = kMargin, map_y = kMargin + kTitle;
   const int bar_height = std::clamp(shown.rows * 3 / 5, 120, 320);
-  const int legend_bottom = map_y + 44 + bar_height + 34;
+  const int legend_bottom = map_y + 44 + bar_height + 50;
   const int arrow = georeferenced ? 44 : 0;
   // The panel widens for a long band name (horizon_azimuth_168.75).
   int base = 0;
-  const int panel = std::max(kPanel, cv::getTextSize(spec.band, kFont, 0.5, 1, &base).width + 4);
+  const int panel = std::max(kPanel, cv::getTextSize(spec.band, kFont, 0.5, 1, &base).width + kMargin + 4);
   const int width = map_x + shown.cols + 2 * kMargin + panel;
   const int height = std::max(map_y + shown.rows + (metres ? kScaleStrip : kMargin),
                               legend_bottom + (arrow ? arrow + 44 : 0) + kMargin);
