@@ -125,7 +125,7 @@ py::tuple horizon(const py::object& z, const ArrayGeoreference& where, const Hor
     py::gil_scoped_release computing;
     const ThreadLimit limit(threads);
     std::int64_t edge_cells = 0;
-    const std::vector<unsigned char> blank = horizon_blank_cells(setup, terrain, edge_cells);
+    const std::vector<unsigned char> blank = horizon_blank_cells(setup, terrain, Window::whole(terrain), edge_cells);
     // Rows [row0, row0 + rows) of direction k in degrees, nodata where the command line writes it.
     auto take_rows = [&](int k, int row0, int rows, const float* radians) {
       const std::size_t first = static_cast<std::size_t>(row0) * w, count = static_cast<std::size_t>(rows) * w;

@@ -27,17 +27,17 @@ std::vector<DirectionBand> direction_bands(const HorizonSetup& setup) {
   return bands;
 }
 
-std::vector<unsigned char> horizon_blank_cells(const HorizonSetup& setup, const Terrain& terrain,
+std::vector<unsigned char> horizon_blank_cells(const HorizonSetup& setup, const Terrain& terrain, const Window& window,
                                                std::int64_t& edge_cells) {
-  const int w = terrain.width(), h = terrain.height();
-  std::vector<unsigned char> blank(static_cast<std::size_t>(w) * h);
+  std::vector<unsigned char> blank(static_cast<std::size_t>(window.cells()));
   edge_cells = 0;
-  for (int r = 0; r < h; ++r) {
-    for (int c = 0; c < w; ++c) {
-      const bool valid = terrain.valid(c, r);
-      const bool leaves = valid && search_circle_leaves_raster(terrain, c, r, setup.engine->radius());
+  for (int r = 0; r < window.rows; ++r) {
+    for (int c = 0; c < window.cols; ++c) {
+      const int tc = window.col0 + c, tr = window.row0 + r;
+      const bool valid = terrain.valid(tc, tr);
+      const bool leaves = valid && search_circle_leaves_raster(terrain, tc, tr, setup.engine->radius());
       edge_cells += leaves;
-      blank[static_cast<std::size_t>(r) * w + c] = !valid || (setup.edge == EdgeMode::nodata && leaves);
+      blank[static_cast<std::size_t>(r) * window.cols + c] = !valid || (setup.edge == EdgeMode::nodata && leaves);
     }
   }
   return blank;

@@ -20,9 +20,10 @@ struct DirectionBand {
 // uniform, the grid lines' own azimuths otherwise.
 std::vector<DirectionBand> direction_bands(const HorizonSetup& setup);
 
-// Cells the horizon bands leave as nodata (1): nodata cells, and with --edge nodata those whose
-// search circle leaves the raster. `edge_cells` receives how many valid cells' circles leave it.
-std::vector<unsigned char> horizon_blank_cells(const HorizonSetup& setup, const Terrain& terrain,
+// Cells of `window` (row by row) the horizon bands leave as nodata (1): nodata cells, and with
+// --edge nodata those whose search circle leaves the raster. `edge_cells` receives how many valid
+// cells' circles leave it.
+std::vector<unsigned char> horizon_blank_cells(const HorizonSetup& setup, const Terrain& terrain, const Window& window,
                                                std::int64_t& edge_cells);
 
 }  // namespace skyview
