@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <set>
 
 #include "skyview/core/error.h"
 #include "skyview/raster/raster_site.h"
@@ -33,10 +34,11 @@ const std::vector<std::string>& sky_option_names() {
 
 void check_sky_options(const CLI::App& app, const SkyRequest& r) {
   check_sky_request(r);
-  refuse_unused(app, "--step", !measured_sky(r), "analytic skies (an EPW gives one step per hourly record)");
-  refuse_unused(app, "--turbidity", preetham_energy(r) || r.sky == "hosek",
-                "--sky preetham, hosek, or isotropic without --epw");
-  refuse_unused(app, "--luminous-efficacy", preetham_energy(r), "--sky preetham, or isotropic without --epw");
+  std::set<std::string> given;
+  for (const std::string& name : sky_option_names()) {
+    if (app.count(name) > 0) given.insert(name);
+  }
+  check_sky_options_used(r, given);
 }
 
 Site raster_sun_site(const Terrain& t, const std::string& input, const std::optional<double>& lat,

@@ -41,17 +41,20 @@ def unix_seconds(times):
     return np.where(np.isnat(a), np.nan, seconds)
 
 
-def sun_position(times, lat, lon, *, elevation=0.0, pressure=None, temperature=None, delta_t=None, delta_ut1=0.0):
+def sun_position(times, lat, lon, *, elevation=0.0, pressure=None, temperature=None, delta_t=None, delta_ut1=0.0,
+                 threads=0):
     """Where the sun is (NREL SPA) at each of `times`, as ``skyview sun --csv`` gives it.
 
     times: numpy datetime64 values in UTC, of any shape (or one). lat, lon: degrees north and east.
     elevation (m), pressure (mbar, default 1013.25; 0 = no refraction), temperature (deg C, default 15),
-    delta_t (TT - UT1 in s; default automatic), delta_ut1 (UT1 - UTC in s): the command line's options.
+    delta_t (TT - UT1 in s; default automatic), delta_ut1 (UT1 - UTC in s): the command line's options;
+    threads: at most this many of the library's threads (0: all cores).
     Returns {column: float64 array of the shape of times} with the CSV's columns zenith_deg, azimuth_deg,
     elevation_deg, declination_deg, right_ascension_deg, earth_sun_distance_au, equation_of_time_min, delta_t_s.
     """
     return _skyview._sun_position_unix(
-        unix_seconds(times), float(lat), float(lon), float(elevation), pressure, temperature, delta_t, float(delta_ut1)
+        unix_seconds(times), float(lat), float(lon), float(elevation), pressure, temperature, delta_t, float(delta_ut1),
+        threads
     )
 
 

@@ -1,6 +1,8 @@
 // skyview.skymap: `skyview skymap` without its files: the directional exposure map of the sky over
 // a period, bands direct and diffuse (Wh m-2 sr-1), rows from the zenith down, columns clockwise
 // from north (exposure_map.h).
+#include <set>
+
 #include "arrays.h"
 #include "bindings.h"
 #include "skyview/core/error.h"
@@ -10,10 +12,13 @@ namespace skyview::python {
 
 namespace {
 
-py::tuple skymap(const SkyRequest& request, std::optional<int> size_given, int threads) {
+py::tuple skymap(const SkyRequest& request, const std::set<std::string>& given, std::optional<int> size_given,
+                 int threads) {
   const int size = size_given.value_or(ExposureOptions{}.width);  // the command line's --size default
   if (size < 8 || size > 8192) throw UsageError("size must be within 8 .. 8192");
   check_sky_request(request);
+  check_sky_options_used(request, given);
+  if (request.sky != "hosek" && given.count("--albedo") > 0) throw UsageError("--albedo applies only to --sky hosek");
   make_sky_model(request);  // its options' errors before any file is read
   PreparedSky sky = prepare_sky(request);
   ExposureMap map{1, 1};
@@ -43,7 +48,12 @@ void bind_sky_functions(py::module_& m) {
          std::optional<std::string> tz, std::optional<std::string> sky, std::optional<double> turbidity,
          std::optional<double> albedo, std::optional<double> luminous_efficacy, std::optional<std::string> epw,
          std::optional<int> size, int threads) {
-        SkyRequest r;  // the command line's defaults
+        SkyRequest r;                 // the command line's defaults
+        std::set<std::string> given;  // the options typed, by the command line's names
+        if (step) given.insert("--step");
+        if (turbidity) given.insert("--turbidity");
+        if (luminous_efficacy) given.insert("--luminous-efficacy");
+        if (albedo) given.insert("--albedo");
         if (from) r.from = *from;
         if (to) r.to = *to;
         r.latitude = lat;
@@ -56,7 +66,7 @@ void bind_sky_functions(py::module_& m) {
         if (albedo) r.albedo = *albedo;
         if (luminous_efficacy) r.luminous_efficacy = *luminous_efficacy;
         if (epw) r.epw = *epw;
-        return skymap(r, size, threads);
+        return skymap(r, given, size, threads);
       },
       "from_"_a, "to"_a, "lat"_a, "lon"_a, "elevation"_a, "step"_a, "tz"_a, "sky"_a, "turbidity"_a, "albedo"_a,
       "luminous_efficacy"_a, "epw"_a, "size"_a, "threads"_a);

@@ -1,9 +1,12 @@
 // skyview.sun_position: `skyview sun --csv` over an array of instants at once.
 #include <pybind11/numpy.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <limits>
 
+#include "arrays.h"
 #include "bindings.h"
 #include "skyview/core/error.h"
 #include "skyview/solar/solar_position.h"
@@ -30,7 +33,7 @@ constexpr Column kColumns[] = {{"zenith_deg", &SunPosition::zenith_deg},
 
 // `unix_seconds`: UTC seconds since 1970 (NaN: not a time, giving NaN everywhere).
 py::dict sun_position(const py::array_t<double, py::array::c_style | py::array::forcecast>& unix_seconds,
-                      const Site& site) {
+                      const Site& site, int threads) {
   validate_site(site);
   const py::ssize_t n = unix_seconds.size();
   constexpr std::size_t kCount = std::size(kColumns);
@@ -38,15 +41,19 @@ py::dict sun_position(const py::array_t<double, py::array::c_style | py::array::
   const double* t = unix_seconds.data();
   {
     py::gil_scoped_release computing;
-    for (py::ssize_t i = 0; i < n; ++i) {
-      const auto j = static_cast<std::size_t>(i);
-      if (std::isnan(t[i])) {
-        for (auto& column : out) column[j] = std::numeric_limits<double>::quiet_NaN();
-        continue;
-      }
-      const SunPosition s = solar_position(t[i], site);
-      for (std::size_t c = 0; c < kCount; ++c) out[c][j] = s.*kColumns[c].value;
-    }
+    const ThreadLimit limit(threads);
+    // The SPA is a pure function of the instant: the library's threads share the instants.
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, static_cast<std::size_t>(n), 1024),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t j = range.begin(); j != range.end(); ++j) {
+                          if (std::isnan(t[j])) {
+                            for (auto& column : out) column[j] = std::numeric_limits<double>::quiet_NaN();
+                            continue;
+                          }
+                          const SunPosition s = solar_position(t[j], site);
+                          for (std::size_t c = 0; c < kCount; ++c) out[c][j] = s.*kColumns[c].value;
+                        }
+                      });
   }
   std::vector<py::ssize_t> shape(unix_seconds.shape(), unix_seconds.shape() + unix_seconds.ndim());
   py::dict columns;
@@ -67,7 +74,7 @@ void bind_solar_functions(py::module_& m) {
       "_sun_position_unix",
       [](const py::array_t<double, py::array::c_style | py::array::forcecast>& unix_seconds, double lat, double lon,
          double elevation, std::optional<double> pressure, std::optional<double> temperature,
-         std::optional<double> delta_t, double delta_ut1) {
+         std::optional<double> delta_t, double delta_ut1, int threads) {
         if (!(std::abs(lat) <= 90.0)) throw UsageError("lat " + std::to_string(lat) + " is outside -90..90 degrees");
         if (!(std::abs(lon) <= 180.0)) throw UsageError("lon " + std::to_string(lon) + " is outside -180..180 degrees");
         Site site;  // the command line's defaults
@@ -81,9 +88,10 @@ void bind_solar_functions(py::module_& m) {
           site.delta_t_s = *delta_t;
         }
         site.delta_ut1_s = delta_ut1;
-        return sun_position(unix_seconds, site);
+        return sun_position(unix_seconds, site, threads);
       },
-      "unix_seconds"_a, "lat"_a, "lon"_a, "elevation"_a, "pressure"_a, "temperature"_a, "delta_t"_a, "delta_ut1"_a);
+      "unix_seconds"_a, "lat"_a, "lon"_a, "elevation"_a, "pressure"_a, "temperature"_a, "delta_t"_a, "delta_ut1"_a,
+      "threads"_a = 0);
 }
 
 }  // namespace skyview::python

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import skyview
-from conftest import REPO, read_raster
+from conftest import REPO, read_raster, run
 
 
 def sun_csv(exe, *args):
@@ -59,8 +59,18 @@ def test_skymap_equals_the_command_lines_bands(cli, tmp_path):
     np.testing.assert_allclose(got.direct, expected["direct"], rtol=2e-7)
     np.testing.assert_allclose(got.diffuse, expected["diffuse"], rtol=2e-7)
     assert got.metadata["SKY"] == "preetham"
-    with pytest.raises(skyview.Error):
+    with pytest.raises(skyview.Error, match="both --from and --to"):
         skyview.skymap("2023-06-21T04:00Z", None, lat=30, lon=10)
+
+
+def test_skymap_refuses_what_its_sky_would_not_use(skyview_exe, tmp_path):
+    period = ["--lat", "30", "--lon", "10", "--from", "2023-06-21T04:00Z", "--to", "2023-06-21T20:00Z"]
+    for flags, kwargs in [(["--albedo", "0.3"], {"albedo": 0.3}),
+                          (["--sky", "hosek", "--luminous-efficacy", "100"], {"sky": "hosek", "luminous_efficacy": 100})]:
+        code, err = run(skyview_exe, "skymap", tmp_path / "sky.tif", "-q", *period, *flags)
+        with pytest.raises(skyview.Error) as raised:
+            skyview.skymap("2023-06-21T04:00Z", "2023-06-21T20:00Z", lat=30, lon=10, **kwargs)
+        assert code != 0 and str(raised.value) in err, (flags, err, str(raised.value))
 
 
 def test_read_las_gives_every_point_of_the_header():

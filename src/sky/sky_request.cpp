@@ -37,6 +37,16 @@ void check_sky_request(const SkyRequest& r) {
   if (!measured_sky(r) && r.from.empty()) throw UsageError("--from and --to are required for --sky " + r.sky);
 }
 
+void check_sky_options_used(const SkyRequest& r, const std::set<std::string>& given) {
+  auto refuse_unused = [&](const std::string& option, bool used, const std::string& where) {
+    if (!used && given.count(option) > 0) throw UsageError(option + " applies only to " + where);
+  };
+  refuse_unused("--step", !measured_sky(r), "analytic skies (an EPW gives one step per hourly record)");
+  refuse_unused("--turbidity", preetham_energy(r) || r.sky == "hosek",
+                "--sky preetham, hosek, or isotropic without --epw");
+  refuse_unused("--luminous-efficacy", preetham_energy(r), "--sky preetham, or isotropic without --epw");
+}
+
 namespace {
 
 ParsedTime parse_noting_ambiguity(const std::string& text, const std::string& zone,

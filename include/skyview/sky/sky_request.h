@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,12 @@ std::unique_ptr<SkyModel> make_sky_model(const SkyRequest& request);
 // Throws skyview::Error, one line, where the request's options do not go together (an EPW sky
 // without a file, a file for an analytic sky, a period half given or missing for an analytic sky).
 void check_sky_request(const SkyRequest& request);
+
+// Throws skyview::UsageError for an option in `given` (the command line's long names: "--step")
+// that the request's sky would not use: --step with an EPW, --turbidity beyond Preetham and
+// Hošek–Wilkie, --luminous-efficacy beyond Preetham's energy. A batch job would otherwise get the
+// answer to another question than it asked, without a word.
+void check_sky_options_used(const SkyRequest& request, const std::set<std::string>& given);
 
 struct PreparedSky {
   Site site;
