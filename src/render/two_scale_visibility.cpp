@@ -59,8 +59,11 @@ class ZenithMarch {
   double horizon_at(double d, bool all) const {
     int c;
     const float* hs;
+    if (!texel(d, c, hs)) return -std::numeric_limits<double>::infinity();
+    return horizon_of(c, hs, d, all);
+  }
+  double horizon_of(int c, const float* hs, double d, bool all) const {
     double h = -std::numeric_limits<double>::infinity();
-    if (!texel(d, c, hs)) return h;
     for (int i = 0; i < c; i += 2) {
       if (all || !above(bottom(hs, c, i))) h = std::max(h, (hs[i] - pz_) / d);
     }
@@ -70,8 +73,11 @@ class ZenithMarch {
   double cover_at(double d) const {
     int c;
     const float* hs;
+    if (!texel(d, c, hs)) return std::numeric_limits<double>::infinity();
+    return cover_of(c, hs, d);
+  }
+  double cover_of(int c, const float* hs, double d) const {
     double h = std::numeric_limits<double>::infinity();
-    if (!texel(d, c, hs)) return h;
     for (int i = 0; i < c; i += 2) {
       const double b = bottom(hs, c, i);
       if (above(b)) h = std::min(h, (b - pz_) / d);
@@ -99,9 +105,9 @@ Region march_zenith(const ZenithDepthMap& z, double qx, double qy, double pz, do
     const float* hs;
     if (!m.texel(d, c, hs)) break;  // nothing beyond the scene
     // While under cover, parts above the point bound the opening; after it, they occlude by their tops.
-    const double cover = run ? m.cover_at(d) : inf;
+    const double cover = run ? m.cover_of(c, hs, d) : inf;
     const bool overhead = std::isfinite(cover);
-    const double horizon = m.horizon_at(d, !run);
+    const double horizon = m.horizon_of(c, hs, d, !run);
     if (overhead) opening_t = std::min(opening_t, cover);
     if (horizon > horizon_t) {
       horizon_t = horizon;
