@@ -11,6 +11,9 @@ packages=(
   clang clang-format libclang-rt-14-dev  # libFuzzer and sanitizer runtimes (only recommended by clang)
   python3  # scripts/fuzz.sh writes its seed LAS files with it
   tzdata  # IANA zone rules read by skyview sun --tz (src/solar/time_zone.cpp)
+  # The Python module (-DSKYVIEW_PYTHON=ON, docs/python.md) and its pytest suite
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-setuptools python3-venv python3-pip
+  python3-xarray python3-dask python3-distributed python3-gdal
 )
 missing=()
 for p in "${packages[@]}"; do

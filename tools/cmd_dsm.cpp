@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "command.h"
+#include "preview_options.h"
 #include "skyview/core/error.h"
 #include "skyview/core/version.h"
 #include "skyview/dsm/dsm_builder.h"
@@ -12,12 +13,28 @@
 namespace skyview::cli {
 namespace {
 
+// Why a run burned none of the footprints it was given: a DSM without its buildings is not what
+// was asked for (the grid even grows to their extent).
+std::string unburned_message(const DsmOptions& dsm, const DsmReport& rep) {
+  std::string why;
+  if (dsm.height_field.empty() && dsm.points.empty())
+    why = "they have no height: give --height-field (the attribute holding it) or --points";
+  else if (dsm.height_field.empty())
+    why = "no returns of the point clouds fall inside them, and no --height-field gives their height";
+  else
+    why = "their " + dsm.height_field + " is empty, or is a height above terrain where there is none (off the DEM)";
+  return "none of the " + std::to_string(rep.footprints_skipped) + " footprints of '" + dsm.footprints +
+         "' was burned (all skipped): " + why + "; --allow-unburned writes the DSM without them";
+}
+
 Runner setup(CLI::App& app) {
   struct Options {
     DsmOptions dsm;
     std::string output, dtm, classes;
     std::vector<double> te;
     OutputOptions out;
+    PreviewOptions preview;
+    bool allow_unburned = false;
   };
   auto o = std::make_shared<Options>();
   app.add_option("output", o->output, "Output height raster")->required();
@@ -80,6 +97,10 @@ Runner setup(CLI::App& app) {
                  "CRS's unit (x, y and z share one CRS)")
       ->check(positive_number());
   app.add_option("--dtm", o->dtm, "Also write the terrain here: the warped DEMs, else the clouds' bare earth");
+  app.add_flag("--allow-unburned", o->allow_unburned,
+               "Write the DSM even when none of the footprints could be burned (else an error: a wrong field or no "
+               "heights)");
+  add_preview_options(app, o->preview, "Also write a PNG of the height band, or --preview-band's (terrain_height)");
   add_output_options(app, o->out);
   app.footer(
       "DSM = max(terrain, buildings, gridded returns) cell by cell. A footprint covers the cells whose centre "
@@ -91,7 +112,11 @@ Runner setup(CLI::App& app) {
     std::vector<std::string> inputs = o->dsm.dems;
     inputs.insert(inputs.end(), o->dsm.points.begin(), o->dsm.points.end());
     inputs.push_back(o->dsm.footprints);
-    check_outputs_apart({o->output, o->dtm}, inputs);
+    check_outputs_apart({o->output, o->dtm, o->preview.path}, inputs);
+    std::vector<std::string> band_names{"height"};
+    if (!o->dtm.empty()) band_names.push_back("terrain_height");
+    const std::size_t drawn = check_preview_options(app, o->preview, band_names);
+    if (!o->preview.path.empty()) check_output_writable(o->preview.path, o->out.overwrite);
     check_output_writable(o->output, o->out.overwrite);
     check_output_format(o->output, o->out.format, 1, o->out.creation_options);
     if (!o->dtm.empty()) {
@@ -120,6 +145,8 @@ Runner setup(CLI::App& app) {
     const DsmResult r = build_dsm(o->dsm);
     const DsmReport& rep = r.report;
     for (const std::string& w : rep.warnings) std::fprintf(stderr, "Warning: %s\n", w.c_str());
+    if (!o->dsm.footprints.empty() && rep.footprints_burned + rep.footprints_from_cloud == 0 && !o->allow_unburned)
+      throw Error(unburned_message(o->dsm, rep));
     WriteOptions wo;
     wo.format = o->out.format;
     wo.creation_options = o->out.creation_options;
@@ -172,6 +199,11 @@ Runner setup(CLI::App& app) {
                     static_cast<unsigned long long>(rep.points_removed_as_noise), rep.footprints_burned,
                     rep.footprints_from_cloud, rep.footprints_repaired, rep.footprints_skipped,
                     static_cast<long long>(rep.cells_filled));
+      if (!o->preview.path.empty()) {
+        const bool terrain = drawn == 1;
+        write_preview(o->preview, terrain ? r.dtm : r.dsm,
+                      {band_names[drawn], "metre", terrain ? o->dtm : o->output, r.georef, {}, {}}, o->out.overwrite);
+      }
       summary.print(what, o->out.quiet);
     }
     // A sparse cloud on the default 1-unit grid (106 returns over 3249 x 4386 cells of a foot) writes

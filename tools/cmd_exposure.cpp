@@ -1,16 +1,15 @@
 // skyview exposure: solar exposure of every cell of a DSM over a period (docs/commands/exposure.md).
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
 
 #include "horizon_job.h"
+#include "preview_options.h"
 #include "sky_job.h"
 #include "skyview/core/error.h"
 #include "skyview/core/number_text.h"
 #include "skyview/exposure/exposure.h"
-#include "skyview/preview/raster_preview.h"
 #include "skyview/raster/raster_site.h"
 #include "skyview/sky/skymap_file.h"
 
@@ -23,7 +22,8 @@ constexpr double kMaxSiteDistanceDeg = 1.0;
 struct Options {
   HorizonJobOptions job;
   SkyRequest sky;
-  std::string method = "fast", skymap, albedo, preview, reads = "area";
+  std::string method = "fast", skymap, albedo, reads = "area";
+  PreviewOptions preview;
   int map_size = 512;
   bool allow_site_mismatch = false;
   const CLI::App* app = nullptr;
@@ -66,7 +66,7 @@ constexpr BandInfo kBands[] = {
 };
 
 int run(Options& o) {
-  const auto started = std::chrono::steady_clock::now();
+  const RunSummary summary("exposure");
   const CLI::App& app = *o.app;
   if (o.method != "fast" && o.method != "exact")
     throw UsageError("--method must be fast or exact (got '" + o.method + "')");
@@ -85,10 +85,12 @@ int run(Options& o) {
     if (o.map_size < 16 || o.map_size > 8192) throw UsageError("--map-size must be within 16 .. 8192");
   }
   const Albedo albedo = parse_albedo(o.albedo);
-  if (!o.preview.empty()) require_extension(o.preview, {".png"}, "--preview");
-  check_outputs_apart({o.job.output, o.preview}, {o.job.input, o.skymap, o.sky.epw, albedo.raster});
+  std::vector<std::string> band_names;
+  for (const BandInfo& b : kBands) band_names.push_back(b.name);
+  const std::size_t drawn = check_preview_options(*o.app, o.preview, band_names);
+  check_outputs_apart({o.job.output, o.preview.path}, {o.job.input, o.skymap, o.sky.epw, albedo.raster});
 
-  HorizonJob job = prepare_horizon_job(o.job, "exposure", {o.preview});
+  HorizonJob job = prepare_horizon_job(o.job, "exposure", {o.preview.path});
   check_output_format(o.job.output, o.job.out.format, static_cast<int>(std::size(kBands)), o.job.out.creation_options);
   const Terrain& t = job.terrain;
   auto& meta = job.metadata;
@@ -266,27 +268,23 @@ int run(Options& o) {
   for (const BandInfo& b : kBands)
     out.push_back({b.name, b.unit, (bands.*b.grid).data(), {{"DEFINITION", b.definition}}});
   write_bands(o.job.output, t.width(), t.height(), t.georef, out, wo);
-  if (!o.preview.empty()) {
-    PreviewSpec spec;
-    spec.title = "total exposure - " + o.job.output;
-    spec.band = "total";
-    spec.unit = "kWh m-2";
-    spec.ramp = ColourRamp::magma;
-    spec.georef = t.georef;
-    write_raster_preview(o.preview, bands.total, spec, o.job.out.overwrite);
+  {
+    const BandInfo& b = kBands[drawn];
+    write_preview(o.preview, bands.*b.grid, {b.name, b.unit, o.job.output, t.georef, {}, {}}, o.job.out.overwrite);
   }
-  if (!o.job.out.quiet) {
+  {
     double sum = 0.0;
     std::int64_t valid = 0;
     for (float v : bands.total.values()) {
       if (!std::isnan(v)) sum += v, ++valid;
     }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    std::fprintf(stderr,
-                 "skyview exposure: %s, %d directions, %dx%d cells, unobstructed global horizontal %.1f kWh/m2, "
-                 "mean total %.1f kWh/m2, %.1f s\n",
-                 o.method.c_str(), job.engine->params().directions, t.width(), t.height(),
-                 bands.global_horizontal / 1000, valid ? sum / valid : 0.0, seconds);
+    char what[256];
+    std::snprintf(what, sizeof what,
+                  "%dx%d cells by %s with %d directions; unobstructed global horizontal %.1f kWh/m2, mean total "
+                  "%.1f kWh/m2",
+                  t.width(), t.height(), o.method.c_str(), job.engine->params().directions,
+                  bands.global_horizontal / 1000, valid ? sum / valid : 0.0);
+    summary.print(what, o.job.out.quiet);
   }
   return 0;
 }
@@ -316,7 +314,7 @@ Runner setup(CLI::App& app) {
                  "fast: how samples read the map: area (exact rectangles, summed-area table) or mipmap (the paper's "
                  "trilinear reads)")
       ->capture_default_str();
-  app.add_option("--preview", o->preview, "Also write a PNG of the total band");
+  add_preview_options(app, o->preview, "Also write a PNG of the total band, or --preview-band's");
   app.footer(
       "Bands: total, direct, diffuse, reflected (kWh/m2 over the period on each cell's tilted surface), "
       "horizontal_total (kWh/m2 on a horizontal surface at the cell), svf. See docs/commands/exposure.md.");

@@ -1,16 +1,15 @@
 // skyview shadow: where the sun is seen from every DSM cell at one instant (docs/commands/shadow.md).
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
 #include <optional>
 
 #include "horizon_job.h"
+#include "preview_options.h"
 #include "sky_job.h"
 #include "skyview/core/error.h"
 #include "skyview/core/number_text.h"
 #include "skyview/exposure/shadow.h"
-#include "skyview/preview/raster_preview.h"
 #include "skyview/solar/solar_position.h"
 #include "skyview/solar/time_parse.h"
 
@@ -21,23 +20,25 @@ constexpr double kDegree = std::numbers::pi / 180.0;
 
 struct Options {
   HorizonJobOptions job;
-  std::string time, tz, preview;
+  std::string time, tz;
+  PreviewOptions preview;
   std::optional<double> lat, lon, elevation;
   bool soft = false;
   const CLI::App* app = nullptr;
 };
 
 int run(const Options& o) {
-  const auto started = std::chrono::steady_clock::now();
+  const RunSummary summary("shadow");
   const CLI::App& app = *o.app;
   // The one direction is the sun's: nothing of the direction set applies.
   for (const char* name : {"--directions", "--azimuth-origin", "--azimuths", "--max-error"})
     refuse_unused(app, name, false, "commands with many directions (a shadow is found along the sun's azimuth)");
   if (!o.tz.empty()) check_time_zone(o.tz);
   const ParsedTime when = parse_time_option(o.time, o.tz);
-  if (!o.preview.empty()) require_extension(o.preview, {".png"}, "--preview");
-  check_outputs_apart({o.job.output, o.preview}, {o.job.input});
-  HorizonJob job = prepare_horizon_job(o.job, "shadow", {o.preview});
+  const char* first = o.soft ? "sun_fraction" : "sunlit";
+  const std::size_t drawn = check_preview_options(app, o.preview, {first, "incidence_cos"});
+  check_outputs_apart({o.job.output, o.preview.path}, {o.job.input});
+  HorizonJob job = prepare_horizon_job(o.job, "shadow", {o.preview.path});
   check_output_format(o.job.output, o.job.out.format, 2, o.job.out.creation_options);
   const Terrain& t = job.terrain;
   std::string site_source;
@@ -84,7 +85,6 @@ int run(const Options& o) {
   wo.creation_options = o.job.out.creation_options;
   wo.overwrite = o.job.out.overwrite;
   wo.metadata = meta;
-  const char* first = o.soft ? "sun_fraction" : "sunlit";
   write_bands(
       o.job.output, t.width(), t.height(), t.georef,
       {{first,
@@ -98,26 +98,25 @@ int run(const Options& o) {
           "cosine of the sun's direction on the cell's surface (Horn normal); below 0 the "
           "surface faces away from the sun"}}}},
       wo);
-  if (!o.preview.empty()) {
-    PreviewSpec spec;
-    spec.title = std::string(first) + " - " + o.job.output;
-    spec.band = first;
-    spec.unit = "1";
-    spec.ramp = ColourRamp::grey;
-    spec.range = std::pair{0.0, 1.0};
-    spec.georef = t.georef;
-    write_raster_preview(o.preview, bands.sunlit, spec, o.job.out.overwrite);
+  if (drawn == 0) {
+    // Sunlit and shaded are the ends of a fixed 0..1 ramp: a stretch of a mask means nothing.
+    write_preview(o.preview, bands.sunlit, {first, "1", o.job.output, t.georef, ColourRamp::grey, std::pair{0.0, 1.0}},
+                  o.job.out.overwrite);
+  } else {
+    write_preview(o.preview, bands.incidence_cos,
+                  {"incidence_cos", "1", o.job.output, t.georef, ColourRamp::diverging, std::pair{-1.0, 1.0}},
+                  o.job.out.overwrite);
   }
-  if (!o.job.out.quiet) {
+  {
     double lit = 0;
     std::int64_t valid = 0;
     for (float v : bands.sunlit.values()) {
       if (!std::isnan(v)) lit += v, ++valid;
     }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    std::fprintf(
-        stderr, "skyview shadow: sun at azimuth %.2f, elevation %.2f deg; %.1f%% of %lld cells sunlit, %.1f s\n",
-        sun.azimuth_deg, sun.elevation_deg, valid ? 100.0 * lit / valid : 0.0, static_cast<long long>(valid), seconds);
+    char what[200];
+    std::snprintf(what, sizeof what, "sun at azimuth %.2f, elevation %.2f deg; %.1f%% of %lld cells sunlit",
+                  sun.azimuth_deg, sun.elevation_deg, valid ? 100.0 * lit / valid : 0.0, static_cast<long long>(valid));
+    summary.print(what, o.job.out.quiet);
   }
   return 0;
 }
@@ -132,7 +131,7 @@ Runner setup(CLI::App& app) {
   app.add_option("--lon", o->lon, "Longitude, degrees east (default: the raster's centre)");
   app.add_option("--elevation", o->elevation, "Elevation above sea level, metres (default: the raster's centre)");
   app.add_flag("--soft", o->soft, "Band sun_fraction: the visible share of the solar disc instead of its centre");
-  app.add_option("--preview", o->preview, "Also write a PNG of the first band");
+  add_preview_options(app, o->preview, "Also write a PNG of the first band, or --preview-band's");
   app.footer(
       "Bands: sunlit (1 where the sun's centre is seen, else 0) or, with --soft, sun_fraction (0..1); incidence_cos. "
       "See docs/commands/shadow.md.");

@@ -1,15 +1,14 @@
 // skyview sunhours: hours of direct sun on every DSM cell over a period (docs/commands/sunhours.md).
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <optional>
 
 #include "horizon_job.h"
+#include "preview_options.h"
 #include "sky_job.h"
 #include "skyview/core/error.h"
 #include "skyview/core/number_text.h"
 #include "skyview/exposure/sun_hours.h"
-#include "skyview/preview/raster_preview.h"
 #include "skyview/solar/time_parse.h"
 
 namespace skyview::cli {
@@ -17,13 +16,14 @@ namespace {
 
 struct Options {
   HorizonJobOptions job;
-  std::string from, to, step = "10m", tz, preview;
+  std::string from, to, step = "10m", tz;
+  PreviewOptions preview;
   std::optional<double> lat, lon, elevation;
   const CLI::App* app = nullptr;
 };
 
 int run(const Options& o) {
-  const auto started = std::chrono::steady_clock::now();
+  const RunSummary summary("sunhours");
   refuse_unused(*o.app, "--max-error", false, "skyview svf");
   if (!o.tz.empty()) check_time_zone(o.tz);
   const double from = parse_time_option(o.from, o.tz).unix_utc, to = parse_time_option(o.to, o.tz).unix_utc;
@@ -31,9 +31,9 @@ int run(const Options& o) {
   const double step_s = parse_duration_option(o.step);
   if (!(step_s < to - from))
     throw UsageError("--step " + o.step + " is not shorter than the period from --from to --to");
-  if (!o.preview.empty()) require_extension(o.preview, {".png"}, "--preview");
-  check_outputs_apart({o.job.output, o.preview}, {o.job.input});
-  HorizonJob job = prepare_horizon_job(o.job, "sunhours", {o.preview});
+  const std::size_t drawn = check_preview_options(*o.app, o.preview, {"sun_hours", "first_sun", "last_sun"});
+  check_outputs_apart({o.job.output, o.preview.path}, {o.job.input});
+  HorizonJob job = prepare_horizon_job(o.job, "sunhours", {o.preview.path});
   check_output_format(o.job.output, o.job.out.format, 3, o.job.out.creation_options);
   const Terrain& t = job.terrain;
   std::string site_source;
@@ -85,25 +85,23 @@ int run(const Options& o) {
                 bands.last_sun.data(),
                 {{"DEFINITION", "hours from the period's start to the end of the last sunlit step (nodata: none)"}}}},
               wo);
-  if (!o.preview.empty()) {
-    PreviewSpec spec;
-    spec.title = "sun_hours - " + o.job.output;
-    spec.band = "sun_hours";
-    spec.unit = "hours";
-    spec.ramp = ColourRamp::magma;
-    spec.georef = t.georef;
-    write_raster_preview(o.preview, bands.sun_hours, spec, o.job.out.overwrite);
+  {
+    const Grid<float>* drawn_band[] = {&bands.sun_hours, &bands.first_sun, &bands.last_sun};
+    const char* names[] = {"sun_hours", "first_sun", "last_sun"};
+    write_preview(o.preview, *drawn_band[drawn], {names[drawn], "hours", o.job.output, t.georef, {}, {}},
+                  o.job.out.overwrite);
   }
-  if (!o.job.out.quiet) {
+  {
     double sum = 0, most = 0;
     std::int64_t valid = 0;
     for (float v : bands.sun_hours.values()) {
       if (!std::isnan(v)) sum += v, ++valid, most = std::max<double>(most, v);
     }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    std::fprintf(stderr,
-                 "skyview sunhours: %zu daylight steps, %d directions, mean %.2f h of sun (most %.2f h), %.1f s\n",
-                 steps.size(), job.engine->params().directions, valid ? sum / valid : 0.0, most, seconds);
+    char what[200];
+    std::snprintf(what, sizeof what, "%dx%d cells, %zu daylight steps, %d directions; mean %.2f h of sun (most %.2f h)",
+                  t.width(), t.height(), steps.size(), job.engine->params().directions, valid ? sum / valid : 0.0,
+                  most);
+    summary.print(what, o.job.out.quiet);
   }
   return 0;
 }
@@ -123,7 +121,7 @@ Runner setup(CLI::App& app) {
   app.add_option("--lat", o->lat, "Latitude, degrees north (default: the raster's centre)");
   app.add_option("--lon", o->lon, "Longitude, degrees east (default: the raster's centre)");
   app.add_option("--elevation", o->elevation, "Elevation above sea level, metres (default: the raster's centre)");
-  app.add_option("--preview", o->preview, "Also write a PNG of the sun_hours band");
+  add_preview_options(app, o->preview, "Also write a PNG of the sun_hours band, or --preview-band's");
   app.footer(
       "Bands: sun_hours, first_sun, last_sun (hours; the last two from the period's start). See "
       "docs/commands/sunhours.md.");

@@ -7,38 +7,95 @@
 
 #include "skyview/core/error.h"
 #include "skyview/core/number_text.h"
-#include "skyview/preview/raster_preview.h"
 #include "skyview/sky_view/svf_run.h"
+#include "skyview/tiling/memory_budget.h"
 
 #include "horizon_job.h"
+#include "preview_options.h"
 
 namespace skyview::cli {
 namespace {
 
-// "svf mean 0.812 (0.105 to 1.000)" over the band's valid cells.
-std::string band_summary(const SvfBand& band) {
-  double sum = 0, lo = INFINITY, hi = -INFINITY;
-  std::size_t n = 0;
-  for (float v : band.values.values()) {
-    if (std::isnan(v)) continue;
-    sum += v;
-    lo = std::min(lo, static_cast<double>(v));
-    hi = std::max(hi, static_cast<double>(v));
-    ++n;
+// "svf mean 0.812 (0.105 to 1.000)" over a band's valid cells, from one grid or from many tiles.
+class BandStats {
+ public:
+  void add(const std::vector<float>& values) {
+    for (float v : values) {
+      if (std::isnan(v)) continue;
+      sum_ += v;
+      lo_ = std::min(lo_, static_cast<double>(v));
+      hi_ = std::max(hi_, static_cast<double>(v));
+      ++n_;
+    }
   }
-  if (n == 0) return band.name + ": no valid cells";
-  char text[160];
-  std::snprintf(text, sizeof text, "%s mean %.3f (%.3f to %.3f)", band.name.c_str(), sum / n, lo, hi);
-  return text;
+  std::string text(const std::string& name) const {
+    if (n_ == 0) return name + ": no valid cells";
+    char text[160];
+    std::snprintf(text, sizeof text, "%s mean %.3f (%.3f to %.3f)", name.c_str(), sum_ / n_, lo_, hi_);
+    return text;
+  }
+
+ private:
+  double sum_ = 0, lo_ = INFINITY, hi_ = -INFINITY;
+  std::size_t n_ = 0;
+};
+
+// The run tile by tile: each tile's window plus halo through the same run_svf as a whole run, its
+// own cells written into the output's window.
+int run_tiled_svf(const HorizonJobOptions& o, const SvfRequest& request, HorizonJob& job, int n_bands,
+                  const RunSummary& summary) {
+  WriteOptions wo;
+  wo.format = o.out.format;
+  wo.creation_options = o.out.creation_options;
+  wo.overwrite = o.out.overwrite;
+  wo.metadata = job.metadata;
+  const int w = job.width(), h = job.height();
+  BandWriter out(o.output, w, h, n_bands, job.georef(), wo);
+  BandStats stats;
+  std::string first_band;
+  std::int64_t edge_cells = 0;
+  bool described = false;
+  with_progress(job, [&](ProgressCounter& progress) {
+    for_each_tile(job, [&](const Terrain& part, const Window& inner, const Window& core) {
+      const SvfResult result = run_svf(
+          part, request, job, [&](const std::function<void(ProgressCounter&)>& work) { work(progress); }, inner);
+      if (static_cast<int>(result.bands.size()) != n_bands)
+        throw Error("a tile gave " + std::to_string(result.bands.size()) + " bands, not " + std::to_string(n_bands) +
+                    " (internal error)");
+      for (int b = 0; b < n_bands; ++b) {
+        const SvfBand& band = result.bands[static_cast<std::size_t>(b)];
+        out.write_window(b, core.col0, core.row0, core.cols, core.rows, band.values.data());
+        if (!described) out.describe(b, {band.name, band.unit, nullptr, band.metadata});
+      }
+      described = true;
+      first_band = result.bands.front().name;
+      stats.add(result.bands.front().values.values());
+      edge_cells += std::stoll(result.metadata.at("EDGE_CELLS"));
+    });
+  });
+  record_edge_cells(job, edge_cells);
+  std::map<std::string, std::string> late = job.metadata;
+  for (const auto& [k, v] : tiling_metadata(job.tiles)) late[k] = v;
+  out.set_metadata(late);
+  out.finish();
+  summary.print(std::to_string(w) + "x" + std::to_string(h) + " cells, " + std::to_string(n_bands) + " bands by " +
+                    std::string(job.engine->name()) + " with " + std::to_string(job.engine->params().directions) +
+                    " directions in " + std::to_string(job.tiles.tiles) + " tiles of " +
+                    std::to_string(job.tiles.tile_size) + " cells (halo " + std::to_string(job.tiles.halo) + "); " +
+                    stats.text(first_band),
+                o.out.quiet);
+  return 0;
 }
 
 Runner setup(CLI::App& app) {
   auto o = std::make_shared<HorizonJobOptions>();
-  auto preview = std::make_shared<std::string>();
+  auto preview = std::make_shared<PreviewOptions>();
   auto check_cells = std::make_shared<int>(-1);
   auto products = std::make_shared<std::string>(default_svf_products());
-  o->azimuth_origin = "grid";  // every band sums over azimuth
+  auto tiling = std::make_shared<TileRequest>();
+  o->azimuth_origin = default_svf_horizon_request().azimuth_origin;
   add_horizon_job_options(app, *o);
+  add_tiling_options(app, tiling->options);
   app.add_option("--products", *products,
                  "Bands to write, in this order; without openness_negative the lowest angles are not computed "
                  "(about half the sweep's time)")
@@ -58,12 +115,13 @@ Runner setup(CLI::App& app) {
                  "metadata (SVF_CHECK_*); with --max-error (default 1000 cells) a run whose measured p99 exceeds the "
                  "request runs again with a finer choice; 0: no check")
       ->check(CLI::Range(0, 10000000));
-  app.add_option("--preview", *preview, "Also write a PNG of the first band written (nodata transparent)");
+  add_preview_options(app, *preview,
+                      "Also write a PNG of the first band written, or --preview-band's (docs/previews.md)");
   app.footer(
       "Bands (--products): svf (cosine-weighted, horizontal surface), svf_surface (the cell's tilted surface), "
       "sky_visibility (solid-angle fraction), openness_positive, openness_negative (degrees); raycast with --rays "
       "adds svf_montecarlo and svf_montecarlo_stderr.");
-  return [o, preview, products, check_cells] {
+  return [o, preview, products, check_cells, tiling, &app] {
     const RunSummary summary("svf");
     SvfRequest request;
     request.products = *products;
@@ -75,12 +133,29 @@ Runner setup(CLI::App& app) {
       if (c->product == Product::openness_negative) opts.params.lower = true;
     request.horizon = horizon_request(opts);
     check_svf_request(request);
-    HorizonJob job = prepare_horizon_job(opts, "svf", {*preview});
-    if (!preview->empty()) require_extension(*preview, {".png"}, "--preview");
+    ProductSet keep = ProductSet::none();
+    for (const SvfProductInfo* c : parse_svf_products(*products)) keep.add(c->product);
+    const int n_products = static_cast<int>(parse_svf_products(*products).size());
+    tiling->memory = [keep, n_products](const HorizonEngine& engine) {
+      return svf_memory(engine, keep, n_products + (engine.name() == "raycast" && engine.params().rays > 0 ? 2 : 0));
+    };
+    HorizonJob job = prepare_horizon_job(opts, "svf", {preview->path}, tiling.get());
     const bool monte_carlo = job.engine->name() == "raycast" && job.engine->params().rays > 0;
-    check_output_format(o->output, o->out.format,
-                        static_cast<int>(parse_svf_products(*products).size()) + (monte_carlo ? 2 : 0),
-                        o->out.creation_options);
+    std::vector<std::string> names;
+    for (const SvfProductInfo* c : parse_svf_products(*products)) names.push_back(c->name);
+    if (monte_carlo) names.insert(names.end(), {"svf_montecarlo", "svf_montecarlo_stderr"});
+    const std::size_t drawn = check_preview_options(app, *preview, names);
+    const int n_bands = n_products + (monte_carlo ? 2 : 0);
+    check_output_format(o->output, o->out.format, n_bands, o->out.creation_options);
+    if (job.tiles.tiled) {
+      // What needs the whole raster at once: the check's random cells (and --max-error's reruns on
+      // them), the preview picture.
+      const std::string tiled = "the run goes by tiles (" + job.tiles.why + ")";
+      if (o->max_error >= 0) throw UsageError("--max-error is not available when " + tiled + " yet");
+      if (*check_cells > 0) throw UsageError("--check-cells is not available when " + tiled + " yet");
+      if (!preview->path.empty()) throw UsageError("--preview needs the whole raster, and " + tiled);
+      return run_tiled_svf(*o, request, job, n_bands, summary);
+    }
     const SvfResult result = run_svf(job.terrain, request, job, [&](const std::function<void(ProgressCounter&)>& work) {
       with_progress(job, work);
     });
@@ -94,23 +169,25 @@ Runner setup(CLI::App& app) {
     wo.overwrite = o->out.overwrite;
     wo.metadata = job.metadata;
     for (const auto& [k, v] : result.metadata) wo.metadata[k] = v;
+    for (const auto& [k, v] : tiling_metadata(job.tiles)) wo.metadata[k] = v;
     const int w = job.terrain.width(), h = job.terrain.height();
     std::vector<OutputBand> bands;
     for (const SvfBand& b : result.bands) bands.push_back({b.name, b.unit, b.values.data(), b.metadata});
     write_bands(o->output, w, h, job.terrain.georef, bands, wo);
-    if (!preview->empty()) {
-      PreviewSpec spec;
-      spec.band = result.bands.front().name;
-      spec.unit = result.bands.front().unit;
-      spec.title = spec.band + " - " + o->output;
-      spec.georef = job.terrain.georef;
-      if (spec.unit == "1") spec.range = std::make_pair(0.0, 1.0);
-      write_raster_preview(*preview, result.bands.front().values, spec, o->out.overwrite);
+    if (!preview->path.empty()) {
+      const auto it = std::find_if(result.bands.begin(), result.bands.end(),
+                                   [&](const SvfBand& b) { return b.name == names[drawn]; });
+      if (it == result.bands.end())
+        throw Error("the preview's band " + names[drawn] + " was not made (internal error)");
+      write_preview(*preview, it->values, {it->name, it->unit, o->output, job.terrain.georef, {}, {}},
+                    o->out.overwrite);
     }
+    BandStats stats;
+    stats.add(result.bands.front().values.values());
     summary.print(std::to_string(w) + "x" + std::to_string(h) + " cells, " + std::to_string(bands.size()) +
                       " bands by " + std::string(job.engine->name()) + " with " +
                       std::to_string(job.engine->params().directions) + " directions; " +
-                      band_summary(result.bands.front()),
+                      stats.text(result.bands.front().name),
                   o->out.quiet);
     return 0;
   };

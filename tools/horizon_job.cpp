@@ -10,6 +10,7 @@
 #include "skyview/core/number_text.h"
 #include "skyview/core/version.h"
 #include "skyview/sky_view/sky_view.h"
+#include "skyview/tiling/tile_grid.h"
 
 namespace skyview::cli {
 
@@ -114,7 +115,7 @@ void use_choice(HorizonJob& job, const AccuracyChoice& choice, double max_error)
 }
 
 HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& command,
-                               const std::vector<std::string>& more_outputs) {
+                               const std::vector<std::string>& more_outputs, const TileRequest* tiling) {
   const HorizonRequest request = horizon_request(o);
   HorizonJob job;
   static_cast<HorizonSetup&>(job) = plan_horizon(request);
@@ -128,13 +129,28 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
     if (!path.empty()) check_output_writable(path, o.out.overwrite);
   }
   check_output_format(o.output, o.out.format, 1, o.out.creation_options);
+  if (tiling) check_tiling_options(tiling->options);
   job.quiet = o.out.quiet;
   ReadOptions ro;
   ro.band = o.band;
   ro.z_scale = o.z_scale;
   ro.assign_crs = o.s_srs;
   ReadReport report;
-  job.terrain = read_terrain(o.input, ro, &report);
+  if (tiling) {
+    const RasterSize size = raster_size(o.input, o.band);
+    job.tiles = plan_tiles(*tiling, *job.engine, size.width, size.height);
+  }
+  if (job.tiles.tiled) {
+    job.reader = std::make_shared<TerrainReader>(o.input, ro, &report);
+    const int w = job.reader->width(), h = job.reader->height();
+    choose_tile_size(job.tiles, *tiling, *job.engine, job.reader->frame(), w, h);
+    // The checks that need the raster look at its centre: a window there as wide as a tile's halo
+    // (the cell farthest from every edge is the centre's).
+    const Window centre = with_halo({w / 2, h / 2, 1, 1}, std::max(1, std::min(job.tiles.halo, 256)), w, h);
+    job.terrain = job.reader->read(centre);
+  } else {
+    job.terrain = read_terrain(o.input, ro, &report);
+  }
   if (report.undeclared_nan_cells > 0) {  // even under -q: it changes what the data say
     std::fprintf(stderr, "Warning: %lld NaN cells in '%s' are not the declared nodata value; treated as nodata\n",
                  static_cast<long long>(report.undeclared_nan_cells), o.input.c_str());
@@ -155,7 +171,7 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
 
 void with_progress(const HorizonJob& job, const std::function<void(ProgressCounter&)>& work) {
   ProgressCounter progress;
-  progress.set_total(static_cast<std::uint64_t>(job.terrain.width()) * job.terrain.height());
+  progress.set_total(static_cast<std::uint64_t>(job.width()) * job.height());
   ProgressReporter reporter(progress, job.quiet);
   work(progress);
 }

@@ -11,9 +11,11 @@
 #include "command.h"
 #include "skyview/horizon/horizon_engine.h"
 #include "skyview/raster/raster_io.h"
+#include "skyview/raster/terrain_reader.h"
 #include "skyview/sky_view/accuracy_choice.h"
 #include "skyview/sky_view/horizon_request.h"
 #include "skyview/sky_view/sky_view.h"
+#include "tiled_job.h"
 
 namespace skyview::cli {
 
@@ -39,18 +41,28 @@ struct HorizonJobOptions {
 void add_horizon_job_options(CLI::App& app, HorizonJobOptions& o);
 
 // The input read and the engine set up (HorizonSetup: engine, edge, choice, sectors, metadata).
+// A tiled run (tiles.tiled) reads its input by windows through `reader`; then `terrain` is only a
+// window about the raster's centre, for the checks that need the raster (fit_horizon).
 struct HorizonJob : HorizonSetup {
   Terrain terrain;
   bool quiet = false;
+  TilePlan tiles;
+  std::shared_ptr<TerrainReader> reader;
+  // The raster's size, whole or tiled.
+  int width() const { return reader ? reader->width() : terrain.width(); }
+  int height() const { return reader ? reader->height() : terrain.height(); }
+  const GeoReference& georef() const { return reader ? reader->georef() : terrain.georef; }
 };
 
 // The options as the library states them, with those given on the command line marked.
 HorizonRequest horizon_request(const HorizonJobOptions& o);
 
 // Reads the input, builds the engine and records the run's parameters; computes nothing yet.
-// `more_outputs` (a preview) are refused with the output where they would replace an input.
+// `more_outputs` (a preview) are refused with the output where they would replace an input. With
+// `tiling` (svf, horizon) the run may go by tiles (HorizonJob::tiles), and the input is then only
+// scanned, not read whole.
 HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& command,
-                               const std::vector<std::string>& more_outputs = {});
+                               const std::vector<std::string>& more_outputs = {}, const TileRequest* tiling = nullptr);
 
 // Runs with another of --max-error's choices from now on: its engine and its metadata.
 void use_choice(HorizonJob& job, const AccuracyChoice& choice, double max_error);

@@ -12,13 +12,13 @@
 #include <memory>
 #include <optional>
 
-#include "skyview/core/error.h"
-#include "skyview/raster/height_unit.h"
-#include "skyview/core/number_text.h"
-#include "skyview/dsm/point_cloud.h"
 #include "dsm/footprint_layer.h"
 #include "dsm/point_filters.h"
+#include "skyview/core/error.h"
+#include "skyview/core/number_text.h"
+#include "skyview/dsm/point_cloud.h"
 #include "skyview/dsm/point_gridder.h"
+#include "skyview/raster/height_unit.h"
 #include "skyview/raster/raster_io.h"
 
 namespace skyview {
@@ -323,6 +323,7 @@ DsmResult build_dsm(const DsmOptions& o) {
     out.report.footprints_not_polygons += counts.not_polygons;
     out.report.footprints_repaired += counts.repaired;
     out.report.footprints_skipped += counts.skipped;
+    if (const std::string w = geos_notices_warning(counts, o.footprints); !w.empty()) out.report.warnings.push_back(w);
     if (counts.polygons == 0) throw Error("'" + o.footprints + "' holds no polygons");
     int bands[] = {1};
     if (!geoms.empty() &&

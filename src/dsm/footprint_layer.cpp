@@ -1,5 +1,7 @@
 #include "dsm/footprint_layer.h"
 
+#include <cpl_error.h>
+
 #include <cmath>
 
 #include "skyview/core/error.h"
@@ -8,6 +10,34 @@
 #include "skyview/raster/raster_io.h"
 
 namespace skyview {
+namespace {
+
+// While alive, GDAL's messages on this thread (GEOS's notices reach GDAL as warnings) are counted
+// into `counts` instead of printed.
+class GeosNoticeCounter {
+ public:
+  explicit GeosNoticeCounter(FootprintCounts& counts) : counts_(counts) { CPLPushErrorHandlerEx(&note, this); }
+  ~GeosNoticeCounter() { CPLPopErrorHandler(); }
+  GeosNoticeCounter(const GeosNoticeCounter&) = delete;
+  GeosNoticeCounter& operator=(const GeosNoticeCounter&) = delete;
+
+ private:
+  static void CPL_STDCALL note(CPLErr level, CPLErrorNum, const char* message) {
+    if (level == CE_Debug) return;
+    auto* self = static_cast<GeosNoticeCounter*>(CPLGetErrorHandlerUserData());
+    if (++self->counts_.geos_notices == 1) self->counts_.first_geos_notice = message ? message : "";
+  }
+  FootprintCounts& counts_;
+};
+
+}  // namespace
+
+std::string geos_notices_warning(const FootprintCounts& counts, const std::string& path) {
+  if (counts.geos_notices == 0) return "";
+  return std::to_string(counts.geos_notices) + (counts.geos_notices == 1 ? " note" : " notes") +
+         " from GEOS while checking the footprints of '" + path + "' (the first: " + counts.first_geos_notice +
+         "); invalid ones were mended or skipped, as counted";
+}
 
 FootprintLayer::FootprintLayer(const std::string& path, const FootprintFields& fields) : path_(path), fields_(fields) {
   init_gdal();
@@ -64,14 +94,21 @@ void FootprintLayer::read(OGRCoordinateTransformation* to_output, const std::fun
       continue;
     }
     ++counts.polygons;
-    if (!geom->IsValid()) {
-      std::unique_ptr<OGRGeometry> fixed(geom->MakeValid());
-      if (!fixed || !fixed->IsValid()) {
-        ++counts.skipped;
-        continue;
+    bool beyond_repair = false;
+    {
+      const GeosNoticeCounter quiet(counts);
+      if (!geom->IsValid()) {
+        std::unique_ptr<OGRGeometry> fixed(geom->MakeValid());
+        beyond_repair = !fixed || !fixed->IsValid();
+        if (!beyond_repair) {
+          geom = std::move(fixed);
+          ++counts.repaired;
+        }
       }
-      geom = std::move(fixed);
-      ++counts.repaired;
+    }
+    if (beyond_repair) {
+      ++counts.skipped;
+      continue;
     }
     if (to_output && geom->transform(to_output) != OGRERR_NONE) {
       ++counts.skipped;

@@ -35,7 +35,15 @@ struct FootprintCounts {
   int repaired = 0;      // invalid polygons OGR's MakeValid mended
   int skipped = 0;       // beyond repair, not transformable, or of no area
   int not_polygons = 0;  // points, lines, no geometry: not a building's outline
+  // GEOS's notes while checking and mending polygons ("Ring Self-intersection at or near point
+  // ..."): counted here and said once by the command, not a line each on the terminal.
+  int geos_notices = 0;
+  std::string first_geos_notice;
 };
+
+// One line for a command's warnings: "N notes from GEOS while checking the footprints of 'F'
+// (the first: ...)"; empty without any.
+std::string geos_notices_warning(const FootprintCounts& counts, const std::string& path);
 
 class FootprintLayer {
  public:

@@ -89,19 +89,29 @@ void BandWriter::write(int index, const OutputBand& band) {
 }
 
 void BandWriter::write_rows(int index, int row0, int rows, const float* values) {
+  write_window(index, 0, row0, s_->width, rows, values);
+}
+
+void BandWriter::write_window(int index, int col0, int row0, int cols, int rows, const float* values) {
   State& s = *s_;
   GDALRasterBand* band = band_of(s.ds.get(), index, s.path);
-  if (row0 < 0 || rows < 0 || row0 + rows > s.height) {
-    throw Error("rows " + std::to_string(row0) + " to " + std::to_string(row0 + rows) + " of '" + s.path +
+  if (col0 < 0 || row0 < 0 || cols < 0 || rows < 0 || col0 + cols > s.width || row0 + rows > s.height) {
+    throw Error("cells (" + std::to_string(col0) + ", " + std::to_string(row0) + ") to (" +
+                std::to_string(col0 + cols) + ", " + std::to_string(row0 + rows) + ") of '" + s.path +
                 "' are outside it (internal error)");
   }
-  const std::size_t n = static_cast<std::size_t>(s.width) * rows;
+  const std::size_t n = static_cast<std::size_t>(cols) * rows;
   s.buffer.resize(std::max(s.buffer.size(), n));
   for (std::size_t i = 0; i < n; ++i) s.buffer[i] = std::isnan(values[i]) ? s.options.nodata : values[i];
-  if (band->RasterIO(GF_Write, 0, row0, s.width, rows, s.buffer.data(), s.width, rows, GDT_Float32, 0, 0) != CE_None) {
+  if (band->RasterIO(GF_Write, col0, row0, cols, rows, s.buffer.data(), cols, rows, GDT_Float32, 0, 0) != CE_None) {
     throw Error("cannot write band " + std::to_string(index + 1) + " of '" + s.path +
                 "': " + naming_output(last_gdal_error(), s.tmp, s.path));
   }
+}
+
+void BandWriter::set_metadata(const std::map<std::string, std::string>& items) {
+  if (!s_->ds) throw Error("'" + s_->path + "' is already finished (internal error)");
+  for (const auto& [k, v] : items) s_->ds->SetMetadataItem(k.c_str(), v.c_str());
 }
 
 void BandWriter::describe(int index, const OutputBand& src) {

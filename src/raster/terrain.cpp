@@ -18,11 +18,16 @@ Jacobian raster_centre_jacobian(const Terrain& t) {
 
 int halo_cells(const Terrain& t, double radius) {
   if (!std::isfinite(radius)) return std::max(t.full_width, t.full_height);
+  return halo_cells(t.frame, {t.origin_col, t.origin_row, t.width(), t.height()}, radius);
+}
+
+int halo_cells(const GroundFrame& frame, const Window& area, double radius) {
+  if (!std::isfinite(radius)) return std::max(area.cols, area.rows);
   // The smallest ground size of a pixel step anywhere bounds how many cells `radius` spans.
   double smallest = std::numeric_limits<double>::infinity();
-  for (int r : {0, t.height() / 2, t.height() - 1}) {
-    for (int c : {0, t.width() / 2, t.width() - 1}) {
-      smallest = std::min(smallest, t.frame.at(c + t.origin_col, r + t.origin_row).min_cell_size());
+  for (int r : {0, area.rows / 2, area.rows - 1}) {
+    for (int c : {0, area.cols / 2, area.cols - 1}) {
+      smallest = std::min(smallest, frame.at(c + area.col0, r + area.row0).min_cell_size());
     }
   }
   return static_cast<int>(std::ceil(radius / (0.99 * smallest))) + 2;

@@ -121,6 +121,7 @@ class FootprintInput : public SceneInput {
     if (counts.repaired > 0) {
       scene.warn(file + std::to_string(counts.repaired) + " invalid footprints were mended by MakeValid");
     }
+    if (const std::string w = geos_notices_warning(counts, layer_.path()); !w.empty()) scene.warn(w);
     for (int k = 0; k < counts.skipped; ++k)
       scene.skip("", "invalid beyond repair, of no area, or off the scene's CRS");
   }

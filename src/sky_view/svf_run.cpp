@@ -116,6 +116,12 @@ std::vector<const SvfProductInfo*> parse_svf_products(const std::string& list) {
   return out;
 }
 
+HorizonRequest default_svf_horizon_request() {
+  HorizonRequest r;
+  r.azimuth_origin = "grid";
+  return r;
+}
+
 void check_svf_request(const SvfRequest& r) {
   parse_svf_products(r.products);
   if (r.check_cells < -1 || r.check_cells > 10000000)
@@ -124,13 +130,14 @@ void check_svf_request(const SvfRequest& r) {
   // --max-error is met by a 95% bound of the p99, which fewer cells cannot give (a raster with
   // fewer valid cells is checked whole, and needs none).
   if (r.horizon.max_error >= 0.0 && n_check > 0 && n_check < cells_for_a_bound()) {
-    throw UsageError("--check-cells " + std::to_string(n_check) + " cannot show that --max-error is met: a 95% bound of " +
-                "the p99 needs " + std::to_string(cells_for_a_bound()) + " cells or more (or 0: no check)");
+    throw UsageError("--check-cells " + std::to_string(n_check) +
+                     " cannot show that --max-error is met: a 95% bound of " + "the p99 needs " +
+                     std::to_string(cells_for_a_bound()) + " cells or more (or 0: no check)");
   }
   if (n_check > 0 && r.horizon.max_error < 0.0 && r.horizon.params.directions > kSvfCheckMaxDirections) {
     throw UsageError("--check-cells measures against the run's own sectors, at most " +
-                std::to_string(kSvfCheckMaxDirections) + " (this run has --directions " +
-                std::to_string(r.horizon.params.directions) + "); use fewer directions or leave it out");
+                     std::to_string(kSvfCheckMaxDirections) + " (this run has --directions " +
+                     std::to_string(r.horizon.params.directions) + "); use fewer directions or leave it out");
   }
 }
 

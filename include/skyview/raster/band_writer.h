@@ -44,7 +44,13 @@ class BandWriter {
   // Or a band in parts: rows [row0, row0 + rows) from `values` (rows x width, NaN = nodata), and
   // the band's description, unit and metadata (its values unused).
   void write_rows(int index, int row0, int rows, const float* values);
+  // Or a window of a band: `cols` x `rows` cells whose top-left cell is (col0, row0), row-major
+  // `values` (NaN = nodata), as a tiled run writes each tile's core.
+  void write_window(int index, int col0, int row0, int cols, int rows, const float* values);
   void describe(int index, const OutputBand& band);
+  // Dataset-level items added to (or replacing) WriteOptions::metadata: what is known only at the
+  // end of a run (edge cells summed over tiles, peak memory).
+  void set_metadata(const std::map<std::string, std::string>& items);
   // Rows of the format's blocks (tiles or strips): parts in multiples of them are compressed once.
   int block_rows() const;
   void finish();

@@ -57,6 +57,8 @@ Jacobian raster_centre_jacobian(const Terrain& terrain);
 
 // Cells of halo a window needs so that every sample within `radius` metres lies in the buffer.
 int halo_cells(const Terrain& terrain, double radius);
+// The same for the cells of `area` (in the raster's cells) of a raster with this ground frame.
+int halo_cells(const GroundFrame& frame, const Window& area, double radius);
 
 // A copy of `window` grown by `halo` cells (clipped to the buffer), placed in the full raster
 // so that horizons computed on it equal those of the whole raster for the window's cells.

@@ -26,8 +26,13 @@ std::vector<const SvfProductInfo*> parse_svf_products(const std::string& list);
 // The default --products list.
 std::string default_svf_products();
 
+// The horizon options of an svf run before any is given: HorizonRequest's, with the sectors
+// centred from grid north (every band sums over azimuth, and the sweep finds the grid's axes and
+// diagonals exactly and fastest). `skyview svf` and skyview.svf() start from it.
+HorizonRequest default_svf_horizon_request();
+
 struct SvfRequest {
-  HorizonRequest horizon;
+  HorizonRequest horizon = default_svf_horizon_request();
   std::string products = default_svf_products();
   // Cells to measure the svf's error on (SVF_CHECK_*); -1: 1000 with --max-error, else none.
   int check_cells = -1;

@@ -1,0 +1,135 @@
+"""skyview on dask arrays: tiles with a halo of the search radius, so that a cluster computes a city.
+
+Each tile is computed with ``dask.array.map_overlap`` on the tile and a halo of the cells within
+``radius`` metres (the library's own ``halo_cells``), placed in the whole raster (its ground frame,
+edges, direction set and seeds), so every cell gets the value the single call
+:func:`skyview.svf` gives it. An unlimited radius (the sweep's default) would need the whole raster
+in every tile, and ``max_error`` chooses its own radius: both are refused here.
+"""
+import numpy as np
+import dask.array as da
+
+from . import Error, _skyview
+from . import horizon as _horizon
+from . import svf as _svf
+
+__all__ = ["halo", "svf", "horizon"]
+
+_NO_RADIUS = (
+    "skyview.dask needs radius= (metres): the halo each tile carries is the search radius, and an unlimited "
+    "radius (the sweep's default) would put the whole raster in every tile; use skyview.svf on one machine instead"
+)
+
+
+def halo(shape, radius, *, cell_size=None, transform=None, crs=None):
+    """Cells of halo a tile of a raster of `shape` (rows, cols) needs for a search radius of `radius` metres."""
+    if radius is None:
+        raise Error(_NO_RADIUS)
+    rows, cols = (int(n) for n in shape)
+    return _skyview._halo_cells(rows, cols, float(radius), cell_size, transform, crs)
+
+
+def _padded_origin(block_info, depth):
+    """Where a block of the overlapped array starts in the raster: the block's own start less its halo."""
+    info = block_info[0]
+    starts = []
+    for (start, _), index in zip(info["array-location"], info["chunk-location"]):
+        # map_overlap (boundary 'none') grows each chunk by `depth` on each side facing another
+        # chunk: block i of the grown array starts 2 * depth * i past block i's start less depth.
+        starts.append(start - 2 * depth * index)
+    return starts
+
+
+def _check(z, options):
+    if not isinstance(z, da.Array):
+        z = da.asarray(z)
+    if z.ndim != 2:
+        raise Error(f"z must be a 2-D array of heights (rows, cols), not {z.ndim}-D")
+    if options.get("radius") is None:
+        raise Error(_NO_RADIUS)
+    if options.get("max_error") is not None:
+        raise Error("skyview.dask takes no max_error: it chooses the radius, which sets each tile's halo; give "
+                    "method, directions and radius")
+    if "cell_size" not in options and "transform" not in options:
+        raise Error("give cell_size (metres) or transform (with crs) to say how large the cells are")
+    return z
+
+
+def _all_nodata(block, nodata):
+    invalid = np.isnan(block) if block.dtype.kind == "f" else np.zeros(block.shape, bool)
+    if nodata is not None:
+        invalid |= block == nodata
+    return bool(invalid.all())
+
+
+def _svf_tile(block, block_info=None, *, options, bands, depth_, full):
+    """One tile of svf(): the block and its halo, placed in the raster; its bands as one record array."""
+    record = np.dtype([(name, "<f4") for name in bands])
+    out = np.empty(block.shape, record)
+    if block_info is None or _all_nodata(block, options.get("nodata")):
+        for name in bands:
+            out[name] = np.nan
+        return out
+    row0, col0 = _padded_origin(block_info, depth_)
+    values = _svf(block, _tile=(col0, row0) + full, **options)
+    for name in bands:
+        out[name] = values[name]
+    return out
+
+
+def _horizon_tile(block, block_info=None, *, options, directions, depth_, full):
+    """One tile of horizon(): its angles as records of `directions` floats, (rows, cols, directions)."""
+    record = np.dtype([("angles", "<f4", (directions,))])
+    out = np.empty(block.shape, record)
+    if block_info is None or _all_nodata(block, options.get("nodata")):
+        out["angles"] = np.nan
+        return out
+    row0, col0 = _padded_origin(block_info, depth_)
+    angles, _ = _horizon(block, _tile=(col0, row0) + full, **options)
+    out["angles"] = np.moveaxis(angles, 0, -1)
+    return out
+
+
+def _directions_first(records):
+    return np.moveaxis(records["angles"], -1, 0)
+
+
+# The tiles' functions are module-level (pickled by reference, not by value: the module's builtin
+# functions cannot be pickled for the workers) and take their settings as keywords.
+def svf(z, **options):
+    """skyview.svf over a dask array of heights: {band name: dask array}, equal to the single call.
+
+    Keywords as for :func:`skyview.svf`; radius is required. Nothing is computed until the arrays are.
+    """
+    z = _check(z, options)
+    depth = halo(z.shape, options["radius"], cell_size=options.get("cell_size"),
+                 transform=options.get("transform"), crs=options.get("crs"))
+    bands = _skyview._svf_band_names(options.get("products"), options.get("method"), options.get("rays"))
+    record = np.dtype([(name, "<f4") for name in bands])
+    full = (int(z.shape[1]), int(z.shape[0]))
+    records = da.map_overlap(_svf_tile, z, depth=depth, boundary="none", dtype=record,
+                             meta=np.empty((0, 0), record), options=options, bands=bands, depth_=depth, full=full)
+    return {name: records[name] for name in bands}
+
+
+def horizon(z, **options):
+    """skyview.horizon over a dask array: (angles as a dask array (directions, rows, cols), azimuths).
+
+    Keywords as for :func:`skyview.horizon`; radius is required.
+    """
+    z = _check(z, options)
+    depth = halo(z.shape, options["radius"], cell_size=options.get("cell_size"),
+                 transform=options.get("transform"), crs=options.get("crs"))
+    full = (int(z.shape[1]), int(z.shape[0]))
+    # The azimuths from a tile of the raster's first 2 x 2 cells, placed in it: the direction set is
+    # the whole raster's.
+    first = np.asarray(z[:2, :2].compute(), dtype=np.float64)
+    if _all_nodata(first, options.get("nodata")):
+        first = np.zeros((2, 2))
+    _, azimuths = _horizon(first, _tile=(0, 0) + full, **dict(options, edge=None))
+    n = len(azimuths)
+    record = np.dtype([("angles", "<f4", (n,))])
+    records = da.map_overlap(_horizon_tile, z, depth=depth, boundary="none", dtype=record,
+                             meta=np.empty((0, 0), record), options=options, directions=n, depth_=depth, full=full)
+    angles = records.map_blocks(_directions_first, dtype=np.float32, new_axis=0, chunks=((n,),) + records.chunks)
+    return angles, azimuths

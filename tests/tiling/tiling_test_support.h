@@ -1,0 +1,67 @@
+#pragma once
+// What the tiled-run tests share: a small city raster on disk, and bit-for-bit comparison of two
+// outputs band by band.
+#include <gdal_priv.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include "core/cli_run.h"
+#include "core/test_support.h"
+
+namespace skyview::test {
+
+// A 67 x 53 city on 1 m cells with a metric CRS and a few nodata cells, written to `dir`/dsm.tif:
+// sizes that few tile sizes divide.
+inline std::string write_small_city(const std::string& dir, int width = 67, int height = 53) {
+  Terrain t = with_local_metric_crs(rasterize(synthetic_city(5), width, height, local_grid(width, height, 1.0)));
+  for (int r = 20; r < 24; ++r) t.heights(30, r) = std::numeric_limits<float>::quiet_NaN();
+  const std::string path = dir + "/dsm.tif";
+  write_terrain(path, t, {});
+  return path;
+}
+
+inline int band_count(const std::string& path) {
+  init_gdal();
+  GDALDataset* ds = GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY);
+  if (!ds) return 0;
+  const int n = ds->GetRasterCount();
+  GDALClose(ds);
+  return n;
+}
+
+inline std::string metadata_item(const std::string& path, const char* key) {
+  init_gdal();
+  GDALDataset* ds = GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY);
+  if (!ds) return "";
+  const char* v = ds->GetMetadataItem(key);
+  std::string out = v ? v : "";
+  GDALClose(ds);
+  return out;
+}
+
+// Every band of `a` holds the same bits as `b`'s (NaN where it has NaN), with the same name.
+inline ::testing::AssertionResult same_bands(const std::string& a, const std::string& b) {
+  const int n = band_count(b);
+  if (n == 0 || band_count(a) != n) return ::testing::AssertionFailure() << band_count(a) << " bands against " << n;
+  for (int k = 1; k <= n; ++k) {
+    const RasterBand x = read_band(a, k), y = read_band(b, k);
+    if (x.description != y.description)
+      return ::testing::AssertionFailure() << "band " << k << ": " << x.description << " against " << y.description;
+    if (x.values.width() != y.values.width() || x.values.height() != y.values.height())
+      return ::testing::AssertionFailure() << "band " << k << " sizes differ";
+    for (std::size_t i = 0; i < x.values.size(); ++i) {
+      const float u = x.values.values()[i], v = y.values.values()[i];
+      if (std::isnan(u) != std::isnan(v) || (!std::isnan(u) && std::memcmp(&u, &v, sizeof u) != 0)) {
+        return ::testing::AssertionFailure()
+               << "band " << k << " (" << y.description << ") cell " << i % x.values.width() << ", "
+               << i / x.values.width() << ": " << u << " against " << v;
+      }
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+}  // namespace skyview::test
