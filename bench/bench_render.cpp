@@ -5,6 +5,7 @@
 // once per scene, as the paper's. Run: build/bench_render --benchmark_min_time=1
 #include <benchmark/benchmark.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -57,7 +58,9 @@ Bench* bench(int which) {
     wo.overwrite = true;
     write_terrain(path, rasterize(synthetic_city(1), 401, 401, g), wo);
   } else {
-    path = std::string(SKYVIEW_SHARED_DIR) + "/sample_data/city3d/berlin_sample.citygml";
+    // SKYVIEW_SHARED_DIR in the environment overrides the build's (a worktree's ../shared is elsewhere).
+    const char* shared = std::getenv("SKYVIEW_SHARED_DIR");
+    path = std::string(shared ? shared : SKYVIEW_SHARED_DIR) + "/sample_data/city3d/berlin_sample.citygml";
     if (!std::filesystem::exists(path)) return nullptr;
   }
   b->scene = load_scene({path});

@@ -53,27 +53,34 @@ class ZenithMarch {
     return i + 1 < c ? hs[i + 1] : -std::numeric_limits<double>::infinity();
   }
   bool above(double bottom) const { return bottom > pz_ + kEps; }
-  // The angle of the highest part at distance d that reaches down to the point's height (all parts
+  // Angles are kept as their tangents (rise over distance, d > 0), which order the same.
+  // The tangent of the highest part at distance d that reaches down to the point's height (all parts
   // when `all`), or -inf.
   double horizon_at(double d, bool all) const {
     int c;
     const float* hs;
+    if (!texel(d, c, hs)) return -std::numeric_limits<double>::infinity();
+    return horizon_of(c, hs, d, all);
+  }
+  double horizon_of(int c, const float* hs, double d, bool all) const {
     double h = -std::numeric_limits<double>::infinity();
-    if (!texel(d, c, hs)) return h;
     for (int i = 0; i < c; i += 2) {
-      if (all || !above(bottom(hs, c, i))) h = std::max(h, std::atan2(hs[i] - pz_, d));
+      if (all || !above(bottom(hs, c, i))) h = std::max(h, (hs[i] - pz_) / d);
     }
     return h;
   }
-  // The lowest angle of the bottoms of parts wholly above the point at distance d, or +inf if none.
+  // The lowest tangent of the bottoms of parts wholly above the point at distance d, or +inf if none.
   double cover_at(double d) const {
     int c;
     const float* hs;
+    if (!texel(d, c, hs)) return std::numeric_limits<double>::infinity();
+    return cover_of(c, hs, d);
+  }
+  double cover_of(int c, const float* hs, double d) const {
     double h = std::numeric_limits<double>::infinity();
-    if (!texel(d, c, hs)) return h;
     for (int i = 0; i < c; i += 2) {
       const double b = bottom(hs, c, i);
-      if (above(b)) h = std::min(h, std::atan2(b - pz_, d));
+      if (above(b)) h = std::min(h, (b - pz_) / d);
     }
     return h;
   }
@@ -88,9 +95,9 @@ class ZenithMarch {
 Region march_zenith(const ZenithDepthMap& z, double qx, double qy, double pz, double ux, double uy,
                     const double* distances, int samples, double opening_max) {
   const ZenithMarch m(z, qx, qy, pz, ux, uy);
-  Region r;
-  r.marched = true;
-  bool run = true;  // every sample so far has a solid part wholly above the point
+  const double inf = std::numeric_limits<double>::infinity();
+  double horizon_t = 0.0, opening_t = inf;  // tangents of h(θ) (at least the horizontal) and h'(θ)
+  bool run = true;                          // every sample so far has a solid part wholly above the point
   double previous = 0.0;
   for (int j = 0; j < samples; ++j) {
     const double d = distances[j];
@@ -98,18 +105,18 @@ Region march_zenith(const ZenithDepthMap& z, double qx, double qy, double pz, do
     const float* hs;
     if (!m.texel(d, c, hs)) break;  // nothing beyond the scene
     // While under cover, parts above the point bound the opening; after it, they occlude by their tops.
-    const double cover = run ? m.cover_at(d) : std::numeric_limits<double>::infinity();
+    const double cover = run ? m.cover_of(c, hs, d) : inf;
     const bool overhead = std::isfinite(cover);
-    const double horizon = m.horizon_at(d, !run);
-    if (overhead) r.opening = std::min(r.opening, cover);
-    if (horizon > r.horizon) {
-      r.horizon = horizon;
+    const double horizon = m.horizon_of(c, hs, d, !run);
+    if (overhead) opening_t = std::min(opening_t, cover);
+    if (horizon > horizon_t) {
+      horizon_t = horizon;
       double lo = previous, hi = d;
       for (int k = 0; k < kBisections; ++k) {
         const double mid = 0.5 * (lo + hi);
         const double a = m.horizon_at(mid, !run);
-        if (a > r.horizon) {
-          r.horizon = a;
+        if (a > horizon_t) {
+          horizon_t = a;
           hi = mid;
         } else {
           lo = mid;
@@ -124,7 +131,7 @@ Region march_zenith(const ZenithDepthMap& z, double qx, double qy, double pz, do
         const double mid = 0.5 * (lo + hi);
         const double a = m.cover_at(mid);
         if (std::isfinite(a)) {
-          r.opening = std::min(r.opening, a);
+          opening_t = std::min(opening_t, a);
           lo = mid;
         } else {
           hi = mid;
@@ -132,12 +139,16 @@ Region march_zenith(const ZenithDepthMap& z, double qx, double qy, double pz, do
       }
     }
     if (run && opening_max > 0 && d > opening_max) {
-      r.opening = r.horizon;  // the opening is too far to trust: closed
+      opening_t = horizon_t;  // the opening is too far to trust: closed
       break;
     }
     previous = d;
   }
-  if (run) r.opening = std::min(r.opening, r.horizon);  // under cover all the way: nothing seen
+  if (run) opening_t = std::min(opening_t, horizon_t);  // under cover all the way: nothing seen
+  Region r;
+  r.marched = true;
+  r.horizon = std::atan(horizon_t);
+  r.opening = opening_t == inf ? kPi / 2 : std::atan(opening_t);
   return r;
 }
 
@@ -271,8 +282,10 @@ TwoScaleBands two_scale_visibility(const ViewBuffers& v, const Camera& cam, cons
           r.horizon = std::max(r.horizon, fine_horizon(v, cam, p, ux, uy, o, jitter));
           merged += slice * cosine_weighted_slice(along, n[2], r.horizon, r.opening);
         }
-        if (sampler && r.opening > r.horizon) {
-          const Direction nd{n[0], n[1], n[2]};
+        if (sampler && r.opening > r.horizon && (n[2] >= 0 || nh > 0)) {
+          // The sampler takes surfaces facing up or sideways; one facing down (an overhang's
+          // underside) is given the exposure of a wall facing its way, an overestimate.
+          const Direction nd = n[2] >= 0 ? Direction{n[0], n[1], n[2]} : Direction{n[0] / nh, n[1] / nh, 0.0};
           SkyExposure e;
           sampler->add_slice(k, float(r.horizon), float(r.opening), std::span<const Direction>(&nd, 1),
                              std::span<SkyExposure>(&e, 1), turn);
