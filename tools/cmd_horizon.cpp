@@ -88,40 +88,55 @@ Runner setup(CLI::App& app) {
     // window into the format's default blocks.)
     if (!job.engine->streams_directions() && !job.tiles.tiled)
       wo.rows_at_once = rows_in_budget(*job.engine, w, kHorizonBlockBytes);
-    BandWriter out(o->output, w, h, n, job.georef(), wo);
     const double rotation = job.sector_rotation * 180.0 / M_PI;
     const bool uniform = job.sectors.is_uniform();  // named by 360 k / N, as before grid lines
-    for (int k = 0; k < n; ++k) {
-      // In [0, 360) to ten significant digits: a set turned by -0.0001° starts at 359.9998961, and
-      // a residue that rounds to 360 reads 0.
-      const double offset = uniform ? 360.0 * k / n : job.sectors.offset[static_cast<std::size_t>(k)] * 180.0 / M_PI;
-      double azimuth = std::fmod(offset + rotation, 360.0);
-      if (azimuth < 0.0) azimuth += 360.0;
-      std::string az = number_text(azimuth);
-      if (std::stod(az) >= 360.0) az = "0";
-      const double width = uniform ? 360.0 / n : 360.0 * job.sectors.share[static_cast<std::size_t>(k)];
-      out.describe(k, {"horizon_azimuth_" + az,
-                       "degree",
-                       nullptr,
-                       {{"AZIMUTH_DEG", az}, {"SECTOR_WIDTH_DEG", number_text(width)}}});
-    }
-    std::int64_t edge_cells = 0;
-    with_progress(job, [&](ProgressCounter& progress) {
-      if (!job.tiles.tiled) {
-        edge_cells = write_horizons(job, job.terrain, Window::whole(job.terrain), 0, 0, out, progress);
-        return;
+    auto describe = [&](BandWriter& out) {
+      for (int k = 0; k < n; ++k) {
+        // In [0, 360) to ten significant digits: a set turned by -0.0001° starts at 359.9998961, and
+        // a residue that rounds to 360 reads 0.
+        const double offset = uniform ? 360.0 * k / n : job.sectors.offset[static_cast<std::size_t>(k)] * 180.0 / M_PI;
+        double azimuth = std::fmod(offset + rotation, 360.0);
+        if (azimuth < 0.0) azimuth += 360.0;
+        std::string az = number_text(azimuth);
+        if (std::stod(az) >= 360.0) az = "0";
+        const double width = uniform ? 360.0 / n : 360.0 * job.sectors.share[static_cast<std::size_t>(k)];
+        out.describe(k, {"horizon_azimuth_" + az,
+                         "degree",
+                         nullptr,
+                         {{"AZIMUTH_DEG", az}, {"SECTOR_WIDTH_DEG", number_text(width)}}});
       }
-      for_each_tile(job, [&](const Terrain& part, const Window& inner, const Window& core) {
-        edge_cells += write_horizons(job, part, inner, core.col0, core.row0, out, progress);
+    };
+    std::int64_t edge_cells = 0;
+    if (job.tiles.tiled) {
+      TiledOutput output;
+      output.path = o->output;
+      output.tiles_dir = tiling->options.tiles_dir;
+      output.bands = n;
+      output.options = wo;
+      with_progress(job, [&](ProgressCounter& progress) {
+        edge_cells = run_tiles(job, output, progress,
+                               [&](const Terrain& part, const Window& inner, BandWriter& out, int col0, int row0) {
+                                 describe(out);
+                                 TileSummary tile;
+                                 tile.edge_cells = write_horizons(job, part, inner, col0, row0, out, progress);
+                                 return tile;
+                               })
+                         .edge_cells;
       });
-    });
-    record_edge_cells(job, edge_cells);
-    std::map<std::string, std::string> late = tiling_metadata(job.tiles);
-    for (const char* key : {"EDGE_CELLS", "EDGE_NOTE"}) {
-      if (job.metadata.count(key)) late[key] = job.metadata.at(key);
+    } else {
+      BandWriter out(o->output, w, h, n, job.georef(), wo);
+      describe(out);
+      with_progress(job, [&](ProgressCounter& progress) {
+        edge_cells = write_horizons(job, job.terrain, Window::whole(job.terrain), 0, 0, out, progress);
+      });
+      record_edge_cells(job, edge_cells);
+      std::map<std::string, std::string> late = tiling_metadata(job.tiles);
+      for (const char* key : {"EDGE_CELLS", "EDGE_NOTE"}) {
+        if (job.metadata.count(key)) late[key] = job.metadata.at(key);
+      }
+      out.set_metadata(late);
+      out.finish();
     }
-    out.set_metadata(late);
-    out.finish();
     summary.print(std::to_string(w) + "x" + std::to_string(h) + " cells, " + std::to_string(n) +
                       " direction bands by " + std::string(job.engine->name()) + "; " + std::to_string(edge_cells) +
                       " cells whose search leaves the raster" +

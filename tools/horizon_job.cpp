@@ -128,8 +128,9 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   for (const std::string& path : more_outputs) {
     if (!path.empty()) check_output_writable(path, o.out.overwrite);
   }
-  check_output_format(o.output, o.out.format, 1, o.out.creation_options);
-  if (tiling) check_tiling_options(tiling->options);
+  const bool mosaic = tiling && !tiling->options.tiles_dir.empty();
+  if (!mosaic) check_output_format(o.output, o.out.format, 1, o.out.creation_options);
+  if (tiling) check_tiling_options(tiling->options, o.output, o.out.format);
   job.quiet = o.out.quiet;
   ReadOptions ro;
   ro.band = o.band;
