@@ -10,6 +10,7 @@ packages=(
   libassimp-dev assimp-testmodels  # mesh files (OBJ, PLY, glTF...); the models are read by the tests
   clang clang-format libclang-rt-14-dev  # libFuzzer and sanitizer runtimes (only recommended by clang)
   python3  # scripts/fuzz.sh writes its seed LAS files with it
+  libopenmpi-dev openmpi-bin  # optional at build time: mpirun ranks share the tiles of a --tiles-dir run
   tzdata  # IANA zone rules read by skyview sun --tz (src/solar/time_zone.cpp)
 )
 missing=()

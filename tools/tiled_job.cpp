@@ -13,6 +13,7 @@
 #include "skyview/raster/vrt_mosaic.h"
 #include "skyview/tiling/tile_grid.h"
 #include "skyview/tiling/tile_manifest.h"
+#include "tile_ranks.h"
 
 namespace skyview::cli {
 
@@ -185,44 +186,86 @@ TileSummary run_tiles(HorizonJob& job, const TiledOutput& output, ProgressCounte
   const std::string manifest_path = (dir / "manifest.json").string();
   const nlohmann::json identity = run_identity(job, output, job.metadata.at("SOURCE"));
   TileManifest manifest(identity);
-  if (std::optional<TileManifest> old = TileManifest::load(manifest_path)) {
-    if (old->same_run(identity)) {
-      manifest = std::move(*old);
-    } else if (!output.options.overwrite) {
-      throw Error("the tiles folder '" + output.tiles_dir +
-                  "' holds the tiles of another run (another input, options or version; see its manifest.json); "
-                  "use --overwrite to replace them");
+  try {  // rank 0 alone keeps the manifest; under mpirun a refusal ends every rank
+    if (std::optional<TileManifest> old =
+            TileRanks::world().rank() == 0 ? TileManifest::load(manifest_path) : std::nullopt) {
+      if (old->same_run(identity)) {
+        manifest = std::move(*old);
+      } else if (!output.options.overwrite) {
+        throw Error("the tiles folder '" + output.tiles_dir +
+                    "' holds the tiles of another run (another input, options or version; see its manifest.json); "
+                    "use --overwrite to replace them");
+      }
     }
+  } catch (const Error& e) {
+    if (!TileRanks::world().parallel()) throw;
+    TileRanks::world().abort(job.metadata.at("SKYVIEW_PRODUCT"), e.what());
   }
   std::vector<std::string> files;
-  int skipped = 0;
-  for (int i = 0; i < grid.count(); ++i) {
+  for (int i = 0; i < grid.count(); ++i) files.push_back((dir / tile_name(grid, i)).string());
+  // A tile computed, written under a temporary name, renamed into place, and its record.
+  auto make_tile = [&](int i) {
     const Window core = grid.core(i);
-    const std::string name = tile_name(grid, i);
-    const std::string file = (dir / name).string();
-    files.push_back(file);
-    if (const TileRecord* done = manifest.find(name)) {
-      std::error_code missing;
-      if (std::filesystem::exists(file, missing) && file_checksum(file) == done->checksum) {
-        total.add(summary_from_json(done->summary));
-        progress.advance(static_cast<std::uint64_t>(core.cells()));
-        ++skipped;
-        continue;
-      }
-      manifest.forget(name);  // missing or changed since: made again
-    }
     WriteOptions wo = output.options;
     wo.overwrite = true;  // a tile the manifest does not record whole is made again
     wo.metadata["TILE_ROW"] = std::to_string(grid.tile_row(i));
     wo.metadata["TILE_COL"] = std::to_string(grid.tile_col(i));
     const Window read = with_halo(core, job.tiles.halo, reader.width(), reader.height());
     const Terrain part = reader.read(read);
+    const std::string& file = files[static_cast<std::size_t>(i)];
     BandWriter out(file, core.cols, core.rows, output.bands, reader.georef().window(core.col0, core.row0), wo);
     const TileSummary summary = work(part, inside(core, read), out, 0, 0);
     out.finish();
-    total.add(summary);
-    manifest.record(name, {name, file_checksum(file), to_json(summary)});
+    return TileRecord{tile_name(grid, i), file_checksum(file), to_json(summary)};
+  };
+  TileRanks& ranks = TileRanks::world();
+  const std::string command = job.metadata.at("SKYVIEW_PRODUCT");
+  if (ranks.parallel() && ranks.rank() > 0) {  // compute what rank 0 hands out, then stop
+    try {
+      ranks.work([&](int i) {
+        const TileRecord record = make_tile(i);
+        return record.checksum + "\n" + record.summary.dump();
+      });
+    } catch (const std::exception& e) {
+      ranks.abort(command, e.what());
+    }
+    ranks.finish_worker();
+  }
+  // The tiles still to make: those the manifest does not record, or whose file is missing or changed.
+  std::vector<int> todo;
+  int skipped = 0;
+  for (int i = 0; i < grid.count(); ++i) {
+    const std::string name = tile_name(grid, i);
+    if (const TileRecord* done = manifest.find(name)) {
+      const std::string& file = files[static_cast<std::size_t>(i)];
+      std::error_code missing;
+      if (std::filesystem::exists(file, missing) && file_checksum(file) == done->checksum) {
+        total.add(summary_from_json(done->summary));
+        progress.advance(static_cast<std::uint64_t>(grid.core(i).cells()));
+        ++skipped;
+        continue;
+      }
+      manifest.forget(name);
+    }
+    todo.push_back(i);
+  }
+  auto record = [&](int i, const TileRecord& tile) {
+    total.add(summary_from_json(tile.summary));
+    manifest.record(tile.file, tile);
     manifest.save(manifest_path);
+    progress.advance(ranks.parallel() ? static_cast<std::uint64_t>(grid.core(i).cells()) : 0);
+  };
+  if (ranks.parallel()) {
+    try {
+      ranks.serve(todo, [&](int i, const std::string& message) {
+        const std::size_t cut = message.find('\n');
+        record(i, {tile_name(grid, i), message.substr(0, cut), nlohmann::json::parse(message.substr(cut + 1))});
+      });
+    } catch (const std::exception& e) {
+      ranks.abort(command, e.what());
+    }
+  } else {
+    for (int i : todo) record(i, make_tile(i));
   }
   job.tiles.skipped = skipped;
   write_vrt_mosaic(output.path, files, late_metadata(), output.options.overwrite);
