@@ -10,6 +10,7 @@ packages=(
   libassimp-dev assimp-testmodels  # mesh files (OBJ, PLY, glTF...); the models are read by the tests
   clang clang-format libclang-rt-14-dev  # libFuzzer and sanitizer runtimes (only recommended by clang)
   python3  # scripts/fuzz.sh writes its seed LAS files with it
+  libopenmpi-dev openmpi-bin  # optional at build time: mpirun ranks share the tiles of a --tiles-dir run
   tzdata  # IANA zone rules read by skyview sun --tz (src/solar/time_zone.cpp)
   # The Python module (-DSKYVIEW_PYTHON=ON, docs/python.md) and its pytest suite
   pybind11-dev python3-dev python3-numpy python3-pytest python3-setuptools python3-venv python3-pip

@@ -100,33 +100,48 @@ Runner setup(CLI::App& app) {
     const int drawn = static_cast<int>(check_preview_options(app, *preview, names));
     Grid<float> drawn_values;
     if (!preview->path.empty()) drawn_values = Grid<float>(w, h);
-    BandWriter out(o->output, w, h, n, job.georef(), wo);
-    for (int k = 0; k < n; ++k) {
-      const std::size_t i = static_cast<std::size_t>(k);
-      out.describe(k, {names[i],
-                       "degree",
-                       nullptr,
-                       {{"AZIMUTH_DEG", directions[i].azimuth_deg},
-                        {"SECTOR_WIDTH_DEG", number_text(directions[i].width_deg)}}});
-    }
+    auto describe = [&](BandWriter& out) {
+      for (int k = 0; k < n; ++k) {
+        const std::size_t i = static_cast<std::size_t>(k);
+        out.describe(k, {names[i],
+                         "degree",
+                         nullptr,
+                         {{"AZIMUTH_DEG", directions[i].azimuth_deg},
+                          {"SECTOR_WIDTH_DEG", number_text(directions[i].width_deg)}}});
+      }
+    };
     std::int64_t edge_cells = 0;
-    with_progress(job, [&](ProgressCounter& progress) {
-      if (!job.tiles.tiled) {
+    if (job.tiles.tiled) {
+      TiledOutput output;
+      output.path = o->output;
+      output.tiles_dir = tiling->options.tiles_dir;
+      output.bands = n;
+      output.options = wo;
+      with_progress(job, [&](ProgressCounter& progress) {
+        edge_cells = run_tiles(job, output, progress,
+                               [&](const Terrain& part, const Window& inner, BandWriter& out, int col0, int row0) {
+                                 describe(out);
+                                 TileSummary tile;
+                                 tile.edge_cells = write_horizons(job, part, inner, col0, row0, out, progress);
+                                 return tile;
+                               })
+                         .edge_cells;
+      });
+    } else {
+      BandWriter out(o->output, w, h, n, job.georef(), wo);
+      describe(out);
+      with_progress(job, [&](ProgressCounter& progress) {
         edge_cells = write_horizons(job, job.terrain, Window::whole(job.terrain), 0, 0, out, progress, drawn,
                                     preview->path.empty() ? nullptr : &drawn_values);
-        return;
-      }
-      for_each_tile(job, [&](const Terrain& part, const Window& inner, const Window& core) {
-        edge_cells += write_horizons(job, part, inner, core.col0, core.row0, out, progress);
       });
-    });
-    record_edge_cells(job, edge_cells);
-    std::map<std::string, std::string> late = tiling_metadata(job.tiles);
-    for (const char* key : {"EDGE_CELLS", "EDGE_NOTE"}) {
-      if (job.metadata.count(key)) late[key] = job.metadata.at(key);
+      record_edge_cells(job, edge_cells);
+      std::map<std::string, std::string> late = tiling_metadata(job.tiles);
+      for (const char* key : {"EDGE_CELLS", "EDGE_NOTE"}) {
+        if (job.metadata.count(key)) late[key] = job.metadata.at(key);
+      }
+      out.set_metadata(late);
+      out.finish();
     }
-    out.set_metadata(late);
-    out.finish();
     write_preview(*preview, drawn_values,
                   {names[static_cast<std::size_t>(drawn)], "degree", o->output, job.georef(), {}, {}},
                   o->out.overwrite);

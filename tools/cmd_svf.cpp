@@ -16,73 +16,47 @@
 namespace skyview::cli {
 namespace {
 
-// "svf mean 0.812 (0.105 to 1.000)" over a band's valid cells, from one grid or from many tiles.
-class BandStats {
- public:
-  void add(const std::vector<float>& values) {
-    for (float v : values) {
-      if (std::isnan(v)) continue;
-      sum_ += v;
-      lo_ = std::min(lo_, static_cast<double>(v));
-      hi_ = std::max(hi_, static_cast<double>(v));
-      ++n_;
-    }
-  }
-  std::string text(const std::string& name) const {
-    if (n_ == 0) return name + ": no valid cells";
-    char text[160];
-    std::snprintf(text, sizeof text, "%s mean %.3f (%.3f to %.3f)", name.c_str(), sum_ / n_, lo_, hi_);
-    return text;
-  }
-
- private:
-  double sum_ = 0, lo_ = INFINITY, hi_ = -INFINITY;
-  std::size_t n_ = 0;
-};
-
 // The run tile by tile: each tile's window plus halo through the same run_svf as a whole run, its
 // own cells written into the output's window.
-int run_tiled_svf(const HorizonJobOptions& o, const SvfRequest& request, HorizonJob& job, int n_bands,
-                  const RunSummary& summary) {
-  WriteOptions wo;
-  wo.format = o.out.format;
-  wo.creation_options = o.out.creation_options;
-  wo.overwrite = o.out.overwrite;
-  wo.metadata = job.metadata;
-  const int w = job.width(), h = job.height();
-  BandWriter out(o.output, w, h, n_bands, job.georef(), wo);
-  BandStats stats;
-  std::string first_band;
-  std::int64_t edge_cells = 0;
-  bool described = false;
+int run_tiled_svf(const HorizonJobOptions& o, const TilingOptions& tiling, const SvfRequest& request, HorizonJob& job,
+                  int n_bands, const RunSummary& summary) {
+  TiledOutput output;
+  output.path = o.output;
+  output.tiles_dir = tiling.tiles_dir;
+  output.bands = n_bands;
+  output.identity = request.products;
+  output.options.format = o.out.format;
+  output.options.creation_options = o.out.creation_options;
+  output.options.overwrite = o.out.overwrite;
+  output.options.metadata = job.metadata;
+  TileSummary total;
   with_progress(job, [&](ProgressCounter& progress) {
-    for_each_tile(job, [&](const Terrain& part, const Window& inner, const Window& core) {
-      const SvfResult result = run_svf(
-          part, request, job, [&](const std::function<void(ProgressCounter&)>& work) { work(progress); }, inner);
-      if (static_cast<int>(result.bands.size()) != n_bands)
-        throw Error("a tile gave " + std::to_string(result.bands.size()) + " bands, not " + std::to_string(n_bands) +
-                    " (internal error)");
-      for (int b = 0; b < n_bands; ++b) {
-        const SvfBand& band = result.bands[static_cast<std::size_t>(b)];
-        out.write_window(b, core.col0, core.row0, core.cols, core.rows, band.values.data());
-        if (!described) out.describe(b, {band.name, band.unit, nullptr, band.metadata});
-      }
-      described = true;
-      first_band = result.bands.front().name;
-      stats.add(result.bands.front().values.values());
-      edge_cells += std::stoll(result.metadata.at("EDGE_CELLS"));
-    });
+    total = run_tiles(
+        job, output, progress, [&](const Terrain& part, const Window& inner, BandWriter& out, int col0, int row0) {
+          const SvfResult result = run_svf(
+              part, request, job, [&](const std::function<void(ProgressCounter&)>& work) { work(progress); }, inner);
+          if (static_cast<int>(result.bands.size()) != n_bands)
+            throw Error("a tile gave " + std::to_string(result.bands.size()) + " bands, not " +
+                        std::to_string(n_bands) + " (internal error)");
+          for (int b = 0; b < n_bands; ++b) {
+            const SvfBand& band = result.bands[static_cast<std::size_t>(b)];
+            out.write_window(b, col0, row0, inner.cols, inner.rows, band.values.data());
+            out.describe(b, {band.name, band.unit, nullptr, band.metadata});
+          }
+          TileSummary tile;
+          tile.first_band_name = result.bands.front().name;
+          tile.first_band.add(result.bands.front().values.values());
+          tile.edge_cells = std::stoll(result.metadata.at("EDGE_CELLS"));
+          return tile;
+        });
   });
-  record_edge_cells(job, edge_cells);
-  std::map<std::string, std::string> late = job.metadata;
-  for (const auto& [k, v] : tiling_metadata(job.tiles)) late[k] = v;
-  out.set_metadata(late);
-  out.finish();
-  summary.print(std::to_string(w) + "x" + std::to_string(h) + " cells, " + std::to_string(n_bands) + " bands by " +
-                    std::string(job.engine->name()) + " with " + std::to_string(job.engine->params().directions) +
-                    " directions in " + std::to_string(job.tiles.tiles) + " tiles of " +
-                    std::to_string(job.tiles.tile_size) + " cells (halo " + std::to_string(job.tiles.halo) + "); " +
-                    stats.text(first_band),
+  summary.print(std::to_string(job.width()) + "x" + std::to_string(job.height()) + " cells, " +
+                    std::to_string(n_bands) + " bands by " + std::string(job.engine->name()) + " with " +
+                    std::to_string(job.engine->params().directions) + " directions in " +
+                    std::to_string(job.tiles.tiles) + " tiles of " + std::to_string(job.tiles.tile_size) +
+                    " cells (halo " + std::to_string(job.tiles.halo) +
+                    (job.tiles.skipped > 0 ? ", " + std::to_string(job.tiles.skipped) + " already finished" : "") +
+                    "); " + total.first_band.text(total.first_band_name),
                 o.out.quiet);
   return 0;
 }
@@ -146,7 +120,8 @@ Runner setup(CLI::App& app) {
     if (monte_carlo) names.insert(names.end(), {"svf_montecarlo", "svf_montecarlo_stderr"});
     const std::size_t drawn = check_preview_options(app, *preview, names);
     const int n_bands = n_products + (monte_carlo ? 2 : 0);
-    check_output_format(o->output, o->out.format, n_bands, o->out.creation_options);
+    if (tiling->options.tiles_dir.empty())
+      check_output_format(o->output, o->out.format, n_bands, o->out.creation_options);
     if (job.tiles.tiled) {
       // What needs the whole raster at once: the check's random cells (and --max-error's reruns on
       // them), the preview picture.
@@ -154,7 +129,7 @@ Runner setup(CLI::App& app) {
       if (o->max_error >= 0) throw UsageError("--max-error is not available when " + tiled + " yet");
       if (*check_cells > 0) throw UsageError("--check-cells is not available when " + tiled + " yet");
       if (!preview->path.empty()) throw UsageError("--preview needs the whole raster, and " + tiled);
-      return run_tiled_svf(*o, request, job, n_bands, summary);
+      return run_tiled_svf(*o, tiling->options, request, job, n_bands, summary);
     }
     const SvfResult result = run_svf(job.terrain, request, job, [&](const std::function<void(ProgressCounter&)>& work) {
       with_progress(job, work);

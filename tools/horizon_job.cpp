@@ -1,4 +1,5 @@
 #include "horizon_job.h"
+#include "tile_ranks.h"
 
 #include <cmath>
 #include <cstdio>
@@ -128,9 +129,12 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   for (const std::string& path : more_outputs) {
     if (!path.empty()) check_output_writable(path, o.out.overwrite);
   }
-  check_output_format(o.output, o.out.format, 1, o.out.creation_options);
-  if (tiling) check_tiling_options(tiling->options);
-  job.quiet = o.out.quiet;
+  const bool mosaic = tiling && !tiling->options.tiles_dir.empty();
+  if (!mosaic) check_output_format(o.output, o.out.format, 1, o.out.creation_options);
+  if (tiling) check_tiling_options(tiling->options, o.output, o.out.format);
+  job.quiet = o.out.quiet || TileRanks::world().rank() > 0;  // progress from rank 0 alone
+  if (tiling && TileRanks::world().parallel() && tiling->options.tiles_dir.empty())
+    throw UsageError("under mpirun the ranks share the tiles of a --tiles-dir run: give --tiles-dir");
   ReadOptions ro;
   ro.band = o.band;
   ro.z_scale = o.z_scale;

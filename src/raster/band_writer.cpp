@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 
@@ -35,6 +36,9 @@ GDALRasterBand* band_of(GDALDataset* ds, int index, const std::string& path) {
 
 // Formats that GDAL can create band by band are written in place under the temporary name; the
 // others (PNG, COG ...) only copy a finished dataset, so they get a memory dataset copied at finish().
+// A cloud-optimised GeoTIFF, which a city-scale run writes, is staged in a temporary GeoTIFF on disk
+// instead (a memory dataset would hold the whole raster) and copied by GDAL's COG driver, which adds
+// the overviews.
 struct BandWriter::State {
   std::string path, tmp;
   int width = 0, height = 0;
@@ -42,6 +46,7 @@ struct BandWriter::State {
   GDALDriver* driver = nullptr;
   DatasetPtr ds;
   bool direct = false;  // ds is the output under `tmp`, not a memory dataset
+  std::string staging;  // where ds is a temporary GeoTIFF to be copied at finish() (COG)
   std::vector<float> buffer;
 };
 
@@ -69,6 +74,18 @@ BandWriter::BandWriter(const std::string& path, int width, int height, int bands
       remove_temporary(s.driver, s.tmp);
       throw Error("cannot write '" + path + "': " + why);
     }
+  } else if (EQUAL(s.driver->GetDescription(), "COG")) {
+    const std::filesystem::path target(path);
+    s.staging = temporary_output_name((target.parent_path() / (target.stem().string() + ".staging.tif")).string());
+    GDALDriver* gtiff = output_driver("GTiff");
+    const CPLStringList opts = creation_options("GTiff", GDT_Float32, {}, options.rows_at_once);
+    CPLErrorReset();
+    s.ds.reset(gtiff->Create(s.staging.c_str(), width, height, bands, GDT_Float32, opts.List()));
+    if (!s.ds) {
+      const std::string why = naming_output(last_gdal_error(), s.staging, path);
+      remove_temporary(gtiff, s.staging);
+      throw Error("cannot write '" + path + "': " + why);
+    }
   } else {
     s.ds = make_memory_dataset(width, height, bands, GDT_Float32);
   }
@@ -81,6 +98,7 @@ BandWriter::~BandWriter() {
   const bool on_disk = s_->direct;
   s_->ds.reset();
   if (on_disk) remove_temporary(s_->driver, s_->tmp);
+  if (!s_->staging.empty()) remove_temporary(output_driver("GTiff"), s_->staging);
 }
 
 void BandWriter::write(int index, const OutputBand& band) {
@@ -123,7 +141,7 @@ void BandWriter::describe(int index, const OutputBand& src) {
 }
 
 int BandWriter::block_rows() const {
-  if (!s_->ds || !s_->direct) return 1;
+  if (!s_->ds || (!s_->direct && s_->staging.empty())) return 1;
   int x = 0, y = 0;
   s_->ds->GetRasterBand(1)->GetBlockSize(&x, &y);
   return std::max(1, y);
@@ -133,8 +151,18 @@ void BandWriter::finish() {
   State& s = *s_;
   if (!s.ds) throw Error("'" + s.path + "' is already finished (internal error)");
   if (!s.direct) {
-    commit_dataset(s.ds.get(), s.path, s.options.format, s.options.creation_options, s.options.overwrite);
+    if (!s.staging.empty()) s.ds->FlushCache();
+    try {
+      commit_dataset(s.ds.get(), s.path, s.options.format, s.options.creation_options, s.options.overwrite);
+    } catch (const Error&) {
+      if (!s.staging.empty()) {
+        s.ds.reset();
+        remove_temporary(output_driver("GTiff"), s.staging);
+      }
+      throw;
+    }
     s.ds.reset();
+    if (!s.staging.empty()) remove_temporary(output_driver("GTiff"), s.staging);
     return;
   }
   // netCDF variables are named after the bands once the file is closed (netcdf_names.cpp).
