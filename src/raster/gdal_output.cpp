@@ -200,20 +200,4 @@ void write_png(const std::string& path, int width, int height, int channels, con
   commit_dataset(ds.get(), path, "PNG", {}, overwrite);
 }
 
-void write_preview_png(const std::string& path, int width, int height, const float* values, double lo, double hi,
-                       bool overwrite) {
-  // Nodata is transparent (grey and alpha), not black: black is an svf of 0.
-  const std::size_t n = static_cast<std::size_t>(width) * height;
-  const int channels = std::any_of(values, values + n, [](float v) { return std::isnan(v); }) ? 2 : 1;
-  std::vector<std::uint8_t> pixels(n * channels);
-  const double scale = hi > lo ? 255.0 / (hi - lo) : 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double v = values[i];
-    pixels[i * channels] =
-        std::isnan(v) ? 0 : static_cast<std::uint8_t>(std::clamp((v - lo) * scale, 0.0, 255.0) + 0.5);
-    if (channels == 2) pixels[i * 2 + 1] = std::isnan(v) ? 0 : 255;
-  }
-  write_png(path, width, height, channels, pixels.data(), overwrite);
-}
-
 }  // namespace skyview

@@ -212,31 +212,6 @@ TEST(OutputFile, ReplacesOnlyWithOverwriteAndLeavesNoTemporary) {
 
 // Pictures (previews, plots) through GDAL's PNG driver: interleaved samples land in their bands in
 // order (red first), and an existing picture is kept without overwrite.
-// A preview's nodata is transparent, not black (black is an svf of 0); one without nodata stays
-// plain grey.
-TEST(OutputFile, PreviewNodataIsTransparent) {
-  const Scratch scratch;
-  const float values[] = {0.0f, 0.5f, std::numeric_limits<float>::quiet_NaN(), 1.0f};
-  write_preview_png(scratch.dir + "/holes.png", 2, 2, values, 0.0, 1.0, false);
-  const float no_holes[] = {0.0f, 0.5f, 0.25f, 1.0f};
-  write_preview_png(scratch.dir + "/full.png", 2, 2, no_holes, 0.0, 1.0, false);
-  std::unique_ptr<GDALDataset> ds(GDALDataset::Open((scratch.dir + "/holes.png").c_str(), GDAL_OF_RASTER));
-  ASSERT_TRUE(ds);
-  ASSERT_EQ(ds->GetRasterCount(), 2);
-  EXPECT_EQ(ds->GetRasterBand(2)->GetColorInterpretation(), GCI_AlphaBand);
-  std::uint8_t grey[4], alpha[4];
-  ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, 2, 2, grey, 2, 2, GDT_Byte, 0, 0), CE_None);
-  ASSERT_EQ(ds->GetRasterBand(2)->RasterIO(GF_Read, 0, 0, 2, 2, alpha, 2, 2, GDT_Byte, 0, 0), CE_None);
-  EXPECT_EQ(grey[0], 0);
-  EXPECT_EQ(grey[1], 128);
-  EXPECT_EQ(grey[3], 255);
-  EXPECT_EQ(alpha[0], 255);
-  EXPECT_EQ(alpha[2], 0);
-  std::unique_ptr<GDALDataset> full(GDALDataset::Open((scratch.dir + "/full.png").c_str(), GDAL_OF_RASTER));
-  ASSERT_TRUE(full);
-  EXPECT_EQ(full->GetRasterCount(), 1);
-}
-
 TEST(OutputFile, PngKeepsChannelOrderAndRefusesToReplace) {
   const Scratch scratch;
   const std::string path = scratch.dir + "/picture.png";

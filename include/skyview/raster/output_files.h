@@ -12,11 +12,6 @@ namespace skyview {
 void write_png(const std::string& path, int width, int height, int channels, const std::uint8_t* pixels,
                bool overwrite);
 
-// Writes a greyscale 8-bit PNG of `values` scaled linearly from [lo, hi] to [0, 255]; where any is nodata
-// (NaN) an alpha channel makes those pixels transparent.
-void write_preview_png(const std::string& path, int width, int height, const float* values, double lo, double hi,
-                       bool overwrite);
-
 // Writes an output that is not a raster (a JSON or markdown report, an encoded plot) the way
 // rasters are written: under a temporary name beside `path`, renamed into place once complete.
 // Throws skyview::Error if `path` exists and !overwrite, or if writing fails (then nothing
