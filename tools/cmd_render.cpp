@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "command.h"
+#include "preview_options.h"
 #include "scene_options.h"
 #include "skyview/core/error.h"
 #include "skyview/core/number_text.h"
@@ -32,7 +33,8 @@ struct Options {
   std::string zenith_in, zenith_out;
   bool reference = false;
   int reference_rays = 128;
-  std::string preview, preview_band = "svf", diff_preview;
+  PreviewOptions preview;
+  std::string diff_preview;
   OutputOptions out;
 };
 
@@ -44,7 +46,6 @@ int run(const CLI::App& app, Options& o) {
     throw UsageError("render needs SCENE... OUT.tif: at least one scene input and the output");
   const std::string output = o.scene.inputs.back();
   o.scene.inputs.pop_back();
-  if (!o.preview.empty()) require_extension(o.preview, {".png"}, "--preview");
   if (!o.diff_preview.empty()) require_extension(o.diff_preview, {".png"}, "--diff-preview");
   if (!o.zenith_out.empty()) require_extension(o.zenith_out, {".tif", ".tiff"}, "--save-zenith");
   refuse_unused(app, "--diff-preview", o.reference, "runs with --reference");
@@ -57,10 +58,12 @@ int run(const CLI::App& app, Options& o) {
       refuse_unused(app, name, false, "runs that make the zenith map (not with --zenith)");
     }
   }
-  const bool exposure_band = o.preview_band == "exposure";
-  if (exposure_band && o.skymap.empty()) throw UsageError("--preview-band exposure needs --skymap");
-  if (o.preview_band == "svf_reference" && !o.reference)
-    throw UsageError("--preview-band svf_reference needs --reference");
+  // The bands the output will hold, in order, for --preview-band.
+  std::vector<std::string> names{"svf", "svf_large", "svf_fine"};
+  if (!o.skymap.empty()) names.insert(names.end(), {"exposure", "exposure_direct", "exposure_diffuse"});
+  names.insert(names.end(), {"depth", "normal_x", "normal_y", "normal_z"});
+  if (o.reference) names.insert(names.end(), {"svf_reference", "svf_reference_stderr"});
+  const std::size_t drawn = check_preview_options(app, o.preview, names, 0);
   CameraSpec spec;
   spec.position = parse_vec3(o.camera, "--camera");
   spec.look_at = parse_vec3(o.look_at, "--look-at");
@@ -70,13 +73,13 @@ int run(const CLI::App& app, Options& o) {
   spec.orthographic_width = o.orthographic;
   Camera probe(spec, {0, 0, 0});  // option checks before the scene is read
   o.visibility.combine = o.combine == "intersect" ? ScaleCombination::intersect : ScaleCombination::multiply;
-  check_outputs_apart({output, o.preview, o.diff_preview, o.zenith_out}, [&] {
+  check_outputs_apart({output, o.preview.path, o.diff_preview, o.zenith_out}, [&] {
     auto in = o.scene.inputs;
     in.push_back(o.skymap);
     in.push_back(o.zenith_in);
     return in;
   }());
-  for (const std::string& path : {output, o.preview, o.diff_preview, o.zenith_out}) {
+  for (const std::string& path : {output, o.preview.path, o.diff_preview, o.zenith_out}) {
     if (!path.empty()) check_output_writable(path, o.out.overwrite);
   }
   check_output_format(output, o.out.format, 15, o.out.creation_options);
@@ -203,29 +206,12 @@ int run(const CLI::App& app, Options& o) {
   if (reference) meta["REFERENCE_RAYS"] = std::to_string(o.reference_rays);
   write_bands(output, view.width, view.height, GeoReference{}, out, wo);
 
-  if (!o.preview.empty()) {
-    PreviewSpec ps;
-    ps.title = o.preview_band + " - " + output;
-    ps.band = o.preview_band;
-    const Grid<float>* g = &bands.svf;
-    ps.unit = "1";
-    ps.range = std::make_pair(0.0, 1.0);
-    if (o.preview_band == "svf_large") g = &bands.svf_large;
-    if (o.preview_band == "svf_fine") g = &bands.svf_fine;
-    if (o.preview_band == "svf_reference") g = &reference->svf;
-    if (exposure_band) {
-      g = &bands.exposure;
-      ps.unit = "kWh m-2";
-      ps.ramp = ColourRamp::magma;
-      ps.range.reset();
-    }
-    if (o.preview_band == "depth") {
-      g = &view.depth;
-      ps.unit = "metre";
-      ps.ramp = ColourRamp::cividis;
-      ps.range.reset();
-    }
-    write_raster_preview(o.preview, *g, ps, o.out.overwrite);
+  if (!o.preview.path.empty()) {
+    const OutputBand& band = out[drawn];
+    const Grid<float> values(view.width, view.height, std::vector<float>(band.values, band.values + n));
+    PreviewBand pb{band.description, band.unit, output, GeoReference{}, std::nullopt, std::nullopt};
+    if (band.unit == "1" && band.description.rfind("svf", 0) == 0) pb.fixed_range = std::pair{0.0, 1.0};
+    write_preview(o.preview, values, pb, o.out.overwrite);
   }
   double diff_sum = 0, diff_abs = 0, large_abs = 0;
   std::size_t diff_n = 0;
@@ -327,10 +313,8 @@ Runner setup(CLI::App& app) {
   app.add_option("--reference-rays", o->reference_rays, "Rays per pixel of --reference")
       ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
-  app.add_option("--preview", o->preview, "Also write a false-colour PNG of --preview-band with a legend");
-  app.add_option("--preview-band", o->preview_band, "The band --preview draws")
-      ->check(CLI::IsMember({"svf", "svf_large", "svf_fine", "svf_reference", "exposure", "depth"}))
-      ->capture_default_str();
+  add_preview_options(app, o->preview,
+                      "Also write a false-colour PNG of the svf band, or --preview-band's, with a legend");
   app.add_option("--diff-preview", o->diff_preview, "With --reference: a PNG of svf - svf_reference");
   add_output_options(app, o->out);
   app.footer(
