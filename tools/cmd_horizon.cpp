@@ -6,6 +6,7 @@
 
 #include "horizon_job.h"
 #include "preview_options.h"
+#include "skyview/core/error.h"
 #include "skyview/core/number_text.h"
 #include "skyview/sky_view/horizon_bands.h"
 
