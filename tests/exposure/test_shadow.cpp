@@ -63,6 +63,40 @@ TEST(Shadow, TowerShadowIsHeightOverTanElevationLong) {
   }
 }
 
+// A cell 3 m from the raster's east edge on flat ground, the sun at 135°, and a 20 m block whose
+// east side is the raster's edge, starting one cell south of where the sun's ray leaves the raster
+// (at the corner of the block's outer cell). Over the mesh of cell centres the ray leaves at the
+// vertex (40, 23) and meets nothing: 0°, lit. The engines extend the raster by a ring of one cell
+// (extend_at_raster_edges) that copies the block to column 41, half a cell beyond the raster's
+// extent, and the ray runs on over that ring to (41, 24): atan(20 / 4√2) = 74.2°, in shadow.
+// The same made 2 and 4 of the city's 1000 cells in tests/render/test_shadow_maps.cpp disagree
+// with exact rays (docs/shadows.md). Open: the fix is to end every engine's track where it
+// leaves the raster's extent (half a cell beyond the outer centres) rather than at the ring's.
+TEST(Shadow, DISABLED_TheRingBeyondTheRasterEdgeCastsNoShadow) {
+  // 41 x 41 cells of 1 m; cell (col, row) lies at east = col - 20, north = 20 - row.
+  const int cell_col = 37, cell_row = 20;
+  const Terrain t = test::terrain_of(
+      [&](double e, double n) { return e >= 36 - 20 - 0.1 && n <= 20 - 24 + 0.1 && n >= 20 - 30 - 0.1 ? 20.0 : 0.0; },
+      41, 1.0);
+  ASSERT_EQ(t.heights(40, 24), 20.0f);
+  ASSERT_EQ(t.heights(36, 30), 20.0f);
+  ASSERT_EQ(t.heights(40, 23), 0.0f);
+  ASSERT_EQ(t.heights(35, 24), 0.0f);
+  for (const char* method : {"raycast", "sweep", "march"}) {
+    SCOPED_TRACE(method);
+    ShadowRequest r;
+    r.sun_azimuth = 135 * kDegree;
+    r.sun_elevation = 25 * kDegree;
+    const auto engine = make_horizon_engine(method, shadow_horizon_params(HorizonParams{}, r.sun_azimuth));
+    ProgressCounter progress;
+    HorizonField field;
+    engine->compute(t, Window{cell_col, cell_row, 1, 1}, field, progress);
+    EXPECT_NEAR(field.upper[0], 0.0, 0.5 * kDegree);  // 74.2° today
+    const ShadowBands b = compute_shadow(*engine, t, Window::whole(t), r, progress);
+    EXPECT_EQ(b.sunlit(cell_col, cell_row), 1.0f);
+  }
+}
+
 TEST(Shadow, SoftShadowsCountTheDiscsVisibleShare) {
   const double r = kSunAngularRadius;
   EXPECT_DOUBLE_EQ(visible_disc_fraction(0.0, r), 0.5);
