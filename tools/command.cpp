@@ -11,7 +11,6 @@
 #include "skyview/core/lowercase.h"
 
 #include <sys/resource.h>
-#include <tbb/global_control.h>
 
 #include <chrono>
 
@@ -79,15 +78,6 @@ ParsedTime parse_time_option(const std::string& text, const std::string& zone) {
   }
   return t;
 }
-
-ThreadLimit::ThreadLimit(int threads) {
-  if (threads > 0) {
-    control_ = std::make_shared<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                     static_cast<std::size_t>(threads));
-  }
-}
-
-ThreadLimit::~ThreadLimit() = default;
 
 namespace {
 

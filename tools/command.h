@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "skyview/core/thread_limit.h"
 #include "skyview/solar/time_parse.h"
 
 namespace skyview::cli {
@@ -71,16 +72,6 @@ ParsedTime parse_time_option(const std::string& text, const std::string& zone);
 
 // parse_duration_s ("30m", "1h"), throwing UsageError for a duration that cannot be read.
 double parse_duration_option(const std::string& text);
-
-// Limits oneTBB to `threads` workers while alive (0 = no limit).
-class ThreadLimit {
- public:
-  explicit ThreadLimit(int threads);
-  ~ThreadLimit();
-
- private:
-  std::shared_ptr<void> control_;
-};
 
 // The one line every command ends with on stderr (unless -q): "skyview CMD: WHAT; S s, peak M GB",
 // with the wall time since the summary was made and the process's peak resident memory.

@@ -2,7 +2,6 @@
 
 #include <cpl_error.h>
 #include <ogr_spatialref.h>
-#include <tbb/global_control.h>
 
 #include <cmath>
 
@@ -29,15 +28,6 @@ bool finite_positive(double v) { return std::isfinite(v) && v > 0.0; }
 
 CollectGdalMessages::CollectGdalMessages(std::vector<std::string>& lines) { CPLPushErrorHandlerEx(collect, &lines); }
 CollectGdalMessages::~CollectGdalMessages() { CPLPopErrorHandler(); }
-
-ThreadLimit::ThreadLimit(int threads) {
-  if (threads < 0) throw UsageError("threads must be 0 (all cores) or more");
-  if (threads > 0) {
-    control_ = std::make_shared<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                     static_cast<std::size_t>(threads));
-  }
-}
-ThreadLimit::~ThreadLimit() = default;
 
 Terrain terrain_from_array(const py::handle& z, const ArrayGeoreference& where, std::vector<std::string>& warnings) {
   if (!py::isinstance<py::array>(z)) throw UsageError("z must be a 2-D NumPy array of heights");

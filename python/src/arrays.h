@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "skyview/core/thread_limit.h"
 #include "skyview/raster/terrain.h"
 
 namespace skyview::python {
@@ -50,16 +51,6 @@ class CollectGdalMessages {
   ~CollectGdalMessages();
   CollectGdalMessages(const CollectGdalMessages&) = delete;
   CollectGdalMessages& operator=(const CollectGdalMessages&) = delete;
-};
-
-// Limits the library's oneTBB threads while alive (0 = all cores), as --threads does.
-class ThreadLimit {
- public:
-  explicit ThreadLimit(int threads);
-  ~ThreadLimit();
-
- private:
-  std::shared_ptr<void> control_;
 };
 
 }  // namespace skyview::python
