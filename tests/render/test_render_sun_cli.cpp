@@ -162,3 +162,31 @@ TEST(RenderSunCli, SoftSunAndCarelessCommandLines) {
   expect_one_line_error(run_skyview("render " + obj + out + small + " --overwrite --time 2024-03-20T08:00Z", dir),
                         "no CRS to place the sun", 1);
 }
+
+// A UTM scene: the site is its centre, and the sun's true azimuth is turned onto the grid by the
+// meridian convergence, grid = true − (λ − λ0)·sin φ (zone 32: λ0 = 9° E).
+TEST(RenderSunCli, UtmSceneTakesItsSiteAndGridNorthFromItsCrs) {
+  const std::string dir = temp_dir("render-sun");
+  Scene s;
+  s.meshes.push_back(ground_mesh(100));
+  s.meshes.push_back(box_mesh("box", {-kBoxHalf, -kBoxHalf, 0}, {kBoxHalf, kBoxHalf, kBoxHeight}));
+  for (SceneMesh& m : s.meshes) {
+    for (Vec3f& v : m.vertices) v[0] += 400000.0f, v[1] += 5335000.0f;
+  }
+  write_obj(s, dir + "/utm.obj");
+  const std::string out = dir + "/utm.tif";
+  const RunResult r = run_skyview("render " + dir + "/utm.obj " + out +
+                                      " --s_srs EPSG:25832 --camera 400000,5335000,300 --look-at 400000,5335000,0 "
+                                      "--up 0,1,0 --orthographic 160 --size 32x32 --zenith-res 4 --time " +
+                                      kTime,
+                                  dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const double lat = std::stod(metadata(out, "LATITUDE")), lon = std::stod(metadata(out, "LONGITUDE"));
+  EXPECT_NEAR(lat, 48.16, 0.01);
+  EXPECT_NEAR(lon, 7.655, 0.01);
+  EXPECT_EQ(metadata(out, "SITE_SOURCE"), "the scene's centre");
+  const double az = std::stod(metadata(out, "SUN_AZIMUTH_DEG")),
+               grid = std::stod(metadata(out, "SUN_GRID_AZIMUTH_DEG"));
+  EXPECT_NEAR(grid - az, -(lon - 9.0) * std::sin(lat * kDegree), 0.02);
+  EXPECT_NEAR(az, solar_position(parse_time(kTime).unix_utc, Site{lat, lon, 0.0}).azimuth_deg, 0.01);
+}
