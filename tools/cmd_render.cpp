@@ -7,6 +7,7 @@
 
 #include "command.h"
 #include "preview_options.h"
+#include "render_sun.h"
 #include "scene_options.h"
 #include "skyview/core/error.h"
 #include "skyview/core/number_text.h"
@@ -31,6 +32,7 @@ struct Options {
   std::string skymap, reads = "area";
   ZenithOptions zenith;
   std::string zenith_in, zenith_out;
+  RenderSunOptions sun;
   bool reference = false;
   int reference_rays = 128;
   PreviewOptions preview;
@@ -61,6 +63,8 @@ int run(const CLI::App& app, Options& o) {
   // The bands the output will hold, in order, for --preview-band.
   std::vector<std::string> names{"svf", "svf_large", "svf_fine"};
   if (!o.skymap.empty()) names.insert(names.end(), {"exposure", "exposure_direct", "exposure_diffuse"});
+  check_render_sun_options(app, o.sun);
+  if (!o.sun.time.empty()) names.insert(names.end(), {sun_band_name(o.sun), "direct_now"});
   names.insert(names.end(), {"depth", "normal_x", "normal_y", "normal_z"});
   if (o.reference) names.insert(names.end(), {"svf_reference", "svf_reference_stderr"});
   const std::size_t drawn = check_preview_options(app, o.preview, names, 0);
@@ -123,6 +127,8 @@ int run(const CLI::App& app, Options& o) {
   const ViewBuffers view = render_view_buffers(rays, camera);
   if (view.hits() == 0) std::fprintf(stderr, "Warning: the camera sees no part of the scene (every pixel is sky)\n");
   const TwoScaleBands bands = two_scale_visibility(view, camera, zenith, o.visibility, sampler ? &*sampler : nullptr);
+  std::optional<RenderSunBands> sun;
+  if (!o.sun.time.empty()) sun = render_sun(o.sun, scene, rays, view, camera.eye());
   std::optional<SvfReference> reference;
   if (o.reference) reference = svf_reference(rays, view, o.reference_rays);
 
@@ -156,6 +162,20 @@ int run(const CLI::App& app, Options& o) {
         {"exposure_direct", "kWh m-2", bands.exposure_direct.data(), {{"DEFINITION", "the sun's part of exposure"}}});
     out.push_back(
         {"exposure_diffuse", "kWh m-2", bands.exposure_diffuse.data(), {{"DEFINITION", "the sky's part of exposure"}}});
+  }
+  if (sun) {
+    out.push_back({sun_band_name(o.sun),
+                   "1",
+                   sun->visibility.data(),
+                   {{"DEFINITION", o.sun.soft ? "visible share of the sun's disc at --time, 0..1"
+                                              : "the sun at --time seen from the surface, 0 (shadow) .. 1 (sunlit; a "
+                                                "shadow map's filter gives values between)"}}});
+    out.push_back({"direct_now",
+                   "W m-2",
+                   sun->direct_now.data(),
+                   {{"DEFINITION",
+                     "beam irradiance on the surface at --time: the clear sky's direct normal irradiance x max(0, "
+                     "normal . sun) x the sun band"}}});
   }
   out.push_back(
       {"depth", "metre", view.depth.data(), {{"DEFINITION", "distance from the camera along the pixel's ray"}}});
@@ -203,6 +223,7 @@ int run(const CLI::App& app, Options& o) {
       if (key.rfind("SKYVIEW_", 0) != 0) meta["SKY_" + key] = value;
     }
   }
+  if (sun) meta.insert(sun->metadata.begin(), sun->metadata.end());
   if (reference) meta["REFERENCE_RAYS"] = std::to_string(o.reference_rays);
   write_bands(output, view.width, view.height, GeoReference{}, out, wo);
 
@@ -211,6 +232,10 @@ int run(const CLI::App& app, Options& o) {
     const Grid<float> values(view.width, view.height, std::vector<float>(band.values, band.values + n));
     PreviewBand pb{band.description, band.unit, output, GeoReference{}, std::nullopt, std::nullopt};
     if (band.unit == "1" && band.description.rfind("svf", 0) == 0) pb.fixed_range = std::pair{0.0, 1.0};
+    if (sun && band.description == sun_band_name(o.sun)) {
+      pb.ramp = ColourRamp::grey;  // sunlit and shaded are the ends of a fixed 0..1 ramp
+      pb.fixed_range = std::pair{0.0, 1.0};
+    }
     write_preview(o.preview, values, pb, o.out.overwrite);
   }
   double diff_sum = 0, diff_abs = 0, large_abs = 0;
@@ -250,6 +275,7 @@ int run(const CLI::App& app, Options& o) {
             number_text(std::round(diff_abs / diff_n * 1000) / 1000) + " (svf_large mean abs " +
             number_text(std::round(large_abs / diff_n * 1000) / 1000) + ")";
   }
+  if (sun) what += "; " + sun->summary;
   summary.print(what, o.out.quiet);
   return 0;
 }
@@ -313,12 +339,14 @@ Runner setup(CLI::App& app) {
   app.add_option("--reference-rays", o->reference_rays, "Rays per pixel of --reference")
       ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
+  add_render_sun_options(app, o->sun);
   add_preview_options(app, o->preview,
                       "Also write a false-colour PNG of the svf band, or --preview-band's, with a legend");
   app.add_option("--diff-preview", o->diff_preview, "With --reference: a PNG of svf - svf_reference");
   add_output_options(app, o->out);
   app.footer(
-      "Bands: svf, svf_large, svf_fine, [exposure, exposure_direct, exposure_diffuse with --skymap], depth, normal_x, "
+      "Bands: svf, svf_large, svf_fine, [exposure, exposure_direct, exposure_diffuse with --skymap], [sunlit or "
+      "sun_fraction, direct_now with --time], depth, normal_x, "
       "normal_y, normal_z, [svf_reference, svf_reference_stderr with --reference]; a pixel grid without "
       "geotransform, NaN where the pixel sees sky. See docs/commands/render.md.");
   return [o, &app] { return run(app, *o); };

@@ -44,11 +44,7 @@ int run(const Options& o) {
   std::string site_source;
   const Site site = raster_sun_site(t, o.job.input, o.lat, o.lon, o.elevation, site_source);
   const SunPosition sun = solar_position(when.unix_utc, site);
-  if (!(sun.elevation_deg > 0.0)) {
-    throw Error("the sun's centre is " + number_text(std::round(-sun.elevation_deg * 100) / 100) +
-                " degrees below the horizon at " + format_iso_utc(when.unix_utc) + " at " +
-                number_text(site.latitude_deg) + ", " + number_text(site.longitude_deg) + ": no shadows to cast");
-  }
+  require_sun_up(sun, when.unix_utc, site);
   // The engine again, turned to the sun.
   job.engine =
       make_horizon_engine(job.engine->name(), shadow_horizon_params(job.engine->params(), sun.azimuth_deg * kDegree));

@@ -5,7 +5,9 @@
 #include <set>
 
 #include "skyview/core/error.h"
+#include "skyview/core/number_text.h"
 #include "skyview/raster/raster_site.h"
+#include "skyview/solar/civil_time.h"
 
 namespace skyview::cli {
 
@@ -41,27 +43,42 @@ void check_sky_options(const CLI::App& app, const SkyRequest& r) {
   check_sky_options_used(r, given);
 }
 
-Site raster_sun_site(const Terrain& t, const std::string& input, const std::optional<double>& lat,
-                     const std::optional<double>& lon, const std::optional<double>& elevation, std::string& source) {
-  if (lat.has_value() != lon.has_value())
-    throw UsageError("give both --lat and --lon, or neither (the raster's centre)");
+Site sun_site(const std::optional<GeoPoint>& centre, double ground, const std::string& what, const std::string& where,
+              const std::optional<double>& lat, const std::optional<double>& lon,
+              const std::optional<double>& elevation, std::string& source) {
+  if (lat.has_value() != lon.has_value()) throw UsageError("give both --lat and --lon, or neither (" + where + ")");
   Site site;
   if (lat) {
     site.latitude_deg = *lat;
     site.longitude_deg = *lon;
     source = "--lat/--lon";
   } else {
-    const std::optional<GeoPoint> centre = raster_centre_geographic(t.georef, t.width(), t.height());
-    if (!centre) throw Error("'" + input + "' has no CRS to place the sun: give --lat and --lon");
+    if (!centre) throw Error(what + " has no CRS to place the sun: give --lat and --lon");
     site.latitude_deg = centre->latitude_deg;
     site.longitude_deg = centre->longitude_deg;
-    source = "the raster's centre";
+    source = where;
   }
   if (!(std::abs(site.latitude_deg) <= 90.0)) throw UsageError("--lat must be within -90 .. 90");
   if (!(std::abs(site.longitude_deg) <= 180.0)) throw UsageError("--lon must be within -180 .. 180");
-  const double mid = t.heights(t.width() / 2, t.height() / 2);
-  site.elevation_m = elevation ? *elevation : t.base_height + (std::isnan(mid) ? 0.0 : mid);
+  site.elevation_m = elevation ? *elevation : ground;
   return site;
+}
+
+Site raster_sun_site(const Terrain& t, const std::string& input, const std::optional<double>& lat,
+                     const std::optional<double>& lon, const std::optional<double>& elevation, std::string& source) {
+  // The centre only when it is needed: a raster without CRS may still be placed by --lat/--lon.
+  const std::optional<GeoPoint> centre =
+      lat || lon ? std::nullopt : raster_centre_geographic(t.georef, t.width(), t.height());
+  const double mid = t.heights(t.width() / 2, t.height() / 2);
+  return sun_site(centre, t.base_height + (std::isnan(mid) ? 0.0 : mid), "'" + input + "'", "the raster's centre", lat,
+                  lon, elevation, source);
+}
+
+void require_sun_up(const SunPosition& sun, double unix_utc, const Site& site) {
+  if (sun.elevation_deg > 0.0) return;
+  throw Error("the sun's centre is " + number_text(std::round(-sun.elevation_deg * 100) / 100) +
+              " degrees below the horizon at " + format_iso_utc(unix_utc) + " at " + number_text(site.latitude_deg) +
+              ", " + number_text(site.longitude_deg) + ": no shadows to cast");
 }
 
 void print_warnings(const std::vector<std::string>& warnings) {

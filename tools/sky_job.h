@@ -7,8 +7,10 @@
 #include <vector>
 
 #include "command.h"
+#include "skyview/raster/raster_site.h"
 #include "skyview/raster/terrain.h"
 #include "skyview/sky/sky_request.h"
+#include "skyview/solar/solar_position.h"
 
 namespace skyview::cli {
 
@@ -29,6 +31,17 @@ void check_sky_options(const CLI::App& app, const SkyRequest& request);
 // naming `input`, where the raster has no CRS and no --lat/--lon are given. `source` says which.
 Site raster_sun_site(const Terrain& terrain, const std::string& input, const std::optional<double>& lat,
                      const std::optional<double>& lon, const std::optional<double>& elevation, std::string& source);
+
+// The same for any place: `centre` from its CRS (nullopt: none, then --lat/--lon are needed, the
+// error naming `what`), `ground` its height above sea level (m) for the default --elevation, and
+// `where` what `source` calls the centre ("the scene's centre").
+Site sun_site(const std::optional<GeoPoint>& centre, double ground, const std::string& what, const std::string& where,
+              const std::optional<double>& lat, const std::optional<double>& lon,
+              const std::optional<double>& elevation, std::string& source);
+
+// Throws skyview::Error naming the sun's elevation, the instant and the site unless the sun's
+// centre is above the horizon: there are no shadows to cast.
+void require_sun_up(const SunPosition& sun, double unix_utc, const Site& site);
 
 // "Warning: ..." on stderr for each, even under -q: they change what the numbers mean.
 void print_warnings(const std::vector<std::string>& warnings);
