@@ -6,6 +6,8 @@
 // place in the whole raster (Terrain::global_id), not in the tile.
 #include <filesystem>
 
+#include "skyview/horizon/horizon_engine.h"
+#include "skyview/tiling/memory_budget.h"
 #include "tiling/tiling_test_support.h"
 
 using namespace skyview;
@@ -118,6 +120,35 @@ TEST(TiledExposure, TilesDirMosaicEqualsTheWholeRun) {
   expect_same_metadata(vrt, dir + "/whole.tif");
   EXPECT_EQ(read_band(vrt, 2).description, "direct");
   EXPECT_EQ(read_band(vrt, 1).unit, "kWh m-2");
+}
+
+// The memory model holds at least what svf's does for the same horizons, and the map besides; a
+// limit one byte under its estimate of the whole run makes the run go by tiles, with the same bits.
+TEST(TiledExposure, MemoryModelAndALimitBelowTheWholeRun) {
+  HorizonParams params;
+  params.directions = 16;
+  params.radius = 9;
+  const auto sweep = make_horizon_engine("sweep", params), march = make_horizon_engine("march", params);
+  ProductSet svf = ProductSet::none();
+  svf.add(Product::svf).add(Product::svf_surface);
+  for (const auto* engine : {sweep.get(), march.get()}) {
+    const MemoryModel without_map = exposure_memory(*engine, 0), model = exposure_memory(*engine, 64 * 64);
+    EXPECT_EQ(model.fixed - without_map.fixed, 256u * 64 * 64);
+    EXPECT_GT(model.per_cell, svf_memory(*engine, svf, 6).per_cell - 2 * SkyViewSums::bytes_per_cell(svf));
+    EXPECT_GE(model.fixed, svf_memory(*engine, svf, 6).fixed);
+  }
+  const std::string dir = temp_dir("tiled-exposure-limit");
+  const std::string dsm = write_small_city(dir);
+  ASSERT_EQ(run_skyview("exposure " + dsm + " " + dir + "/whole.tif" + kCommon, dir).exit_code, 0);
+  EXPECT_TRUE(metadata_item(dir + "/whole.tif", "TILE_SIZE").empty());
+  EXPECT_FALSE(metadata_item(dir + "/whole.tif", "PEAK_MEMORY_BYTES").empty());
+  const std::uint64_t limit = exposure_memory(*sweep, 64 * 64).bytes(67 * 53) - 1;
+  const RunResult r = run_skyview(
+      "exposure " + dsm + " " + dir + "/limited.tif" + kCommon + " --memory-limit " + std::to_string(limit), dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_FALSE(metadata_item(dir + "/limited.tif", "TILE_SIZE").empty());
+  EXPECT_GT(std::stoi(metadata_item(dir + "/limited.tif", "TILES")), 1);
+  EXPECT_TRUE(same_bands(dir + "/limited.tif", dir + "/whole.tif"));
 }
 
 TEST(TiledExposure, RefusesTilesWithoutARadiusAndAPreview) {
