@@ -59,7 +59,7 @@ HorizonRequest horizon_request(const HorizonJobOptions& o);
 
 // Reads the input, builds the engine and records the run's parameters; computes nothing yet.
 // `more_outputs` (a preview) are refused with the output where they would replace an input. With
-// `tiling` (svf, horizon) the run may go by tiles (HorizonJob::tiles), and the input is then only
+// `tiling` (svf, horizon, exposure) the run may go by tiles (HorizonJob::tiles), and the input is then only
 // scanned, not read whole.
 HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& command,
                                const std::vector<std::string>& more_outputs = {}, const TileRequest* tiling = nullptr);

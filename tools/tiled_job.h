@@ -1,5 +1,5 @@
 #pragma once
-// Runs of `skyview svf` and `skyview horizon` tile by tile (docs/tiling.md): with --tile-size, or
+// Runs of `skyview svf`, `horizon` and `exposure` tile by tile (docs/tiling.md): with --tile-size, or
 // when the whole run would take more memory than --memory-limit. Each tile's window plus a halo as
 // wide as the search radius is read through GDAL (never the whole raster), computed by the same job
 // code as a whole run, and only the tile's own cells are written.

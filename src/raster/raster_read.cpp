@@ -31,10 +31,12 @@ BandPacking band_packing(GDALRasterBand& band, const std::string& path, int band
   return p;
 }
 
-RasterBand read_band(const std::string& path, int band_index) {
-  DatasetPtr ds = open_raster_band(path, band_index);
+namespace {
+
+// The cells of `window` of an open band.
+RasterBand band_window(GDALDataset& ds, int band_index, const std::string& path, const Window& window) {
   RawWindow raw;
-  read_raw_window(*ds, band_index, path, {0, 0, ds->GetRasterXSize(), ds->GetRasterYSize()}, raw);
+  read_raw_window(ds, band_index, path, window, raw);
   RasterBand out;
   out.values = Grid<float>(raw.width, raw.height);
   for (std::size_t i = 0; i < raw.values.size(); ++i) {
@@ -43,12 +45,31 @@ RasterBand read_band(const std::string& path, int band_index) {
                                  ? std::numeric_limits<float>::quiet_NaN()
                                  : static_cast<float>(v);
   }
-  out.georef = georeference_of(*ds);
-  const char* description = ds->GetRasterBand(band_index)->GetDescription();
+  // The whole raster's georeference as stored; a window's moved to its first cell.
+  const GeoReference georef = georeference_of(ds);
+  out.georef = window.col0 == 0 && window.row0 == 0 ? georef : georef.window(window.col0, window.row0);
+  const char* description = ds.GetRasterBand(band_index)->GetDescription();
   out.description = description ? description : "";
-  const char* unit = ds->GetRasterBand(band_index)->GetUnitType();
+  const char* unit = ds.GetRasterBand(band_index)->GetUnitType();
   out.unit = unit ? unit : "";
   return out;
+}
+
+}  // namespace
+
+RasterBand read_band(const std::string& path, int band_index) {
+  DatasetPtr ds = open_raster_band(path, band_index);
+  return band_window(*ds, band_index, path, {0, 0, ds->GetRasterXSize(), ds->GetRasterYSize()});
+}
+
+RasterBand read_band(const std::string& path, int band_index, const Window& window) {
+  DatasetPtr ds = open_raster_band(path, band_index);
+  if (window.col0 < 0 || window.row0 < 0 || window.cols < 1 || window.rows < 1 ||
+      window.col0 + window.cols > ds->GetRasterXSize() || window.row0 + window.rows > ds->GetRasterYSize())
+    throw Error("'" + path + "' has no cells " + std::to_string(window.col0) + ".." +
+                std::to_string(window.col0 + window.cols - 1) + ", " + std::to_string(window.row0) + ".." +
+                std::to_string(window.row0 + window.rows - 1));
+  return band_window(*ds, band_index, path, window);
 }
 
 Terrain terrain_from_heights(HeightValues&& h, const ReadOptions& options, ReadReport* report) {

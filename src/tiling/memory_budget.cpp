@@ -114,6 +114,22 @@ MemoryModel horizon_memory(const HorizonEngine& engine) {
   return m;
 }
 
+MemoryModel exposure_memory(const HorizonEngine& engine, std::int64_t map_cells) {
+  MemoryModel m;
+  // compute_exposure: per cell the surface's normal and slope with four sums in double (64 bytes
+  // rounded up), the sky-view sums of svf and svf_surface, six bands of floats (24), an albedo
+  // window (4); the sweep's planes in progress as for horizon (upper angles only).
+  ProductSet keep = ProductSet::none();
+  keep.add(Product::svf).add(Product::svf_surface);
+  const double planes = engine.streams_directions() ? 3.0 * tbb::this_task_arena::max_concurrency() * 4 : 0.0;
+  m.per_cell = kInputBytesPerCell + 64 + SkyViewSums::bytes_per_cell(keep) + 24 + 4 + planes;
+  // The map itself, its pyramid (sums and moments in double, 4/3 of a level) and summed-area
+  // tables: under 256 bytes a map cell.
+  m.fixed = kProgramBytes + static_cast<std::uint64_t>(256 * std::max<std::int64_t>(map_cells, 0)) +
+            (engine.streams_directions() ? 0 : kHorizonBlockBytes);
+  return m;
+}
+
 int tile_size_for(const MemoryModel& model, std::uint64_t limit, int halo, int largest) {
   if (limit <= model.fixed || model.per_cell <= 0) return 0;
   const double side = std::sqrt(static_cast<double>(limit - model.fixed) / model.per_cell);

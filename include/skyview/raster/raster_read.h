@@ -80,5 +80,8 @@ struct RasterBand {
   std::string unit;         // GDAL's unit type ("1", "degrees" in skyview's outputs), may be empty
 };
 RasterBand read_band(const std::string& path, int band);
+// The cells of `window` (inside the raster: the caller's job) alone, their georeference the
+// window's; reads no more of the file than the window.
+RasterBand read_band(const std::string& path, int band, const Window& window);
 
 }  // namespace skyview

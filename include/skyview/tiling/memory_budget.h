@@ -32,6 +32,9 @@ struct MemoryModel {
 // `skyview svf` keeping `keep` and writing `bands` bands; `skyview horizon`.
 MemoryModel svf_memory(const HorizonEngine& engine, ProductSet keep, int bands);
 MemoryModel horizon_memory(const HorizonEngine& engine);
+// `skyview exposure` with an exposure map of `map_cells` cells (its pyramid and summed-area
+// tables are held once per tile besides).
+MemoryModel exposure_memory(const HorizonEngine& engine, std::int64_t map_cells);
 
 // The largest tile size whose square window plus `halo` on every side fits `limit` bytes by
 // `model`, at most `largest`; multiples of 256 cells (the outputs' blocks) where it is that large.
