@@ -164,6 +164,7 @@ ZenithDepthMap ZenithDepthMap::load(const std::string& path, const Scene& scene)
   }
   ZenithDepthMap m;
   const int layers = ds->GetRasterCount();
+  m.max_layers_ = std::atoi(max_layers);  // before the dataset (which owns the text) is closed
   ds.reset();
   std::vector<RasterBand> bands;
   for (int k = 1; k <= layers; ++k) bands.push_back(read_band(path, k));
@@ -171,7 +172,6 @@ ZenithDepthMap ZenithDepthMap::load(const std::string& path, const Scene& scene)
   m.width_ = bands[0].values.width();
   m.height_ = bands[0].values.height();
   m.resolution_ = g.geotransform[1];
-  m.max_layers_ = std::atoi(max_layers);
   m.x0_ = g.geotransform[0] - scene.origin[0];
   m.y0_ = g.geotransform[3] - scene.origin[1];
   if (!(m.resolution_ > 0) || std::abs(g.geotransform[5] + m.resolution_) > 1e-9 * m.resolution_) {
