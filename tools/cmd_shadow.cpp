@@ -63,15 +63,7 @@ int run(const Options& o) {
   record_edge_cells(job, bands.edge_cells);
   auto& meta = job.metadata;
   for (const char* key : {"DIRECTIONS", "AZIMUTH_ORIGIN", "AZIMUTHS", "SECTOR_ROTATION_DEG"}) meta.erase(key);
-  meta["TIME"] = o.time;
-  meta["TIME_UTC"] = format_iso_utc(when.unix_utc);
-  if (!o.tz.empty()) meta["TIME_ZONE"] = o.tz;
-  meta["LATITUDE"] = number_text(site.latitude_deg);
-  meta["LONGITUDE"] = number_text(site.longitude_deg);
-  meta["SITE_SOURCE"] = site_source;
-  meta["SUN_AZIMUTH_DEG"] = number_text(sun.azimuth_deg);
-  meta["SUN_ELEVATION_DEG"] = number_text(sun.elevation_deg);
-  meta["SUN_POSITION"] = "NREL SPA, topocentric, refracted (15 C, 1013.25 mbar)";
+  add_sun_instant_metadata(meta, o.time, o.tz, when.unix_utc, site, site_source, sun);
   meta["SHADOW_TEST"] = o.soft ? "visible share of the solar disc (radius 0.2665 deg) above the horizon along the "
                                  "sun's azimuth, taken level across the disc"
                                : "the sun's centre above the horizon along the sun's azimuth";

@@ -170,16 +170,8 @@ RenderSunBands render_sun(const RenderSunOptions& o, const Scene& scene, const R
     lit += v;
   }
   auto& m = out.metadata;
-  m["TIME"] = o.time;
-  m["TIME_UTC"] = format_iso_utc(when.unix_utc);
-  if (!o.tz.empty()) m["TIME_ZONE"] = o.tz;
-  m["LATITUDE"] = number_text(site.latitude_deg);
-  m["LONGITUDE"] = number_text(site.longitude_deg);
-  m["SITE_SOURCE"] = source;
-  m["SUN_AZIMUTH_DEG"] = number_text(sun.azimuth_deg);
-  m["SUN_ELEVATION_DEG"] = number_text(sun.elevation_deg);
+  add_sun_instant_metadata(m, o.time, o.tz, when.unix_utc, site, source, sun);
   m["SUN_GRID_AZIMUTH_DEG"] = number_text(grid_azimuth / kDegree);
-  m["SUN_POSITION"] = "NREL SPA, topocentric, refracted (15 C, 1013.25 mbar)";
   m["SHADOW_METHOD"] = shadow_method_name(method);
   if (has_maps(method)) {
     m["SHADOW_MAP_SIZE"] = std::to_string(so.map_size);

@@ -85,4 +85,18 @@ void print_warnings(const std::vector<std::string>& warnings) {
   for (const std::string& w : warnings) std::fprintf(stderr, "Warning: %s\n", w.c_str());
 }
 
+void add_sun_instant_metadata(std::map<std::string, std::string>& m, const std::string& time_text,
+                              const std::string& zone, double unix_utc, const Site& site,
+                              const std::string& site_source, const SunPosition& sun) {
+  m["TIME"] = time_text;
+  m["TIME_UTC"] = format_iso_utc(unix_utc);
+  if (!zone.empty()) m["TIME_ZONE"] = zone;
+  m["LATITUDE"] = number_text(site.latitude_deg);
+  m["LONGITUDE"] = number_text(site.longitude_deg);
+  m["SITE_SOURCE"] = site_source;
+  m["SUN_AZIMUTH_DEG"] = number_text(sun.azimuth_deg);
+  m["SUN_ELEVATION_DEG"] = number_text(sun.elevation_deg);
+  m["SUN_POSITION"] = "NREL SPA, topocentric, refracted (15 C, 1013.25 mbar)";
+}
+
 }  // namespace skyview::cli

@@ -2,6 +2,7 @@
 // The sky options `skyview skymap` and `skyview exposure` share (the sky model and its parameters,
 // the site, the period and its steps, a weather file), and what the commands do with them before
 // the library builds the sky (sky_request.h).
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -42,6 +43,12 @@ Site sun_site(const std::optional<GeoPoint>& centre, double ground, const std::s
 // Throws skyview::Error naming the sun's elevation, the instant and the site unless the sun's
 // centre is above the horizon: there are no shadows to cast.
 void require_sun_up(const SunPosition& sun, double unix_utc, const Site& site);
+
+// The metadata of one instant's sun (TIME, TIME_UTC, TIME_ZONE, LATITUDE, LONGITUDE, SITE_SOURCE,
+// SUN_AZIMUTH_DEG, SUN_ELEVATION_DEG, SUN_POSITION) that skyview shadow and render --time share.
+void add_sun_instant_metadata(std::map<std::string, std::string>& m, const std::string& time_text,
+                              const std::string& zone, double unix_utc, const Site& site,
+                              const std::string& site_source, const SunPosition& sun);
 
 // "Warning: ..." on stderr for each, even under -q: they change what the numbers mean.
 void print_warnings(const std::vector<std::string>& warnings);
