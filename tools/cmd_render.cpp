@@ -64,7 +64,7 @@ int run(const CLI::App& app, Options& o) {
   std::vector<std::string> names{"svf", "svf_large", "svf_fine"};
   if (!o.skymap.empty()) names.insert(names.end(), {"exposure", "exposure_direct", "exposure_diffuse"});
   check_render_sun_options(app, o.sun);
-  if (!o.sun.time.empty()) names.insert(names.end(), {sun_band_name(o.sun), "direct_now"});
+  if (!o.sun.time.empty()) names.insert(names.end(), {sun_band_name(o.sun), "direct_now", "diffuse_now", "global_now"});
   names.insert(names.end(), {"depth", "normal_x", "normal_y", "normal_z"});
   if (o.reference) names.insert(names.end(), {"svf_reference", "svf_reference_stderr"});
   const std::size_t drawn = check_preview_options(app, o.preview, names, 0);
@@ -77,13 +77,14 @@ int run(const CLI::App& app, Options& o) {
   spec.orthographic_width = o.orthographic;
   Camera probe(spec, {0, 0, 0});  // option checks before the scene is read
   o.visibility.combine = o.combine == "intersect" ? ScaleCombination::intersect : ScaleCombination::multiply;
-  check_outputs_apart({output, o.preview.path, o.diff_preview, o.zenith_out}, [&] {
+  check_outputs_apart({output, o.preview.path, o.diff_preview, o.zenith_out, o.sun.colour_out, o.sun.shadow_diff}, [&] {
     auto in = o.scene.inputs;
     in.push_back(o.skymap);
     in.push_back(o.zenith_in);
     return in;
   }());
-  for (const std::string& path : {output, o.preview.path, o.diff_preview, o.zenith_out}) {
+  for (const std::string& path :
+       {output, o.preview.path, o.diff_preview, o.zenith_out, o.sun.colour_out, o.sun.shadow_diff}) {
     if (!path.empty()) check_output_writable(path, o.out.overwrite);
   }
   check_output_format(output, o.out.format, 15, o.out.creation_options);
@@ -95,7 +96,13 @@ int run(const CLI::App& app, Options& o) {
   if (point_inside_scene(rays, camera.eye())) {
     throw UsageError("--camera " + o.camera + " is inside an object of the scene (or on its surface): move it outside");
   }
-  // The exposure map first: a bad file fails before any rendering.
+  // The sun (below the horizon: an error) and the exposure maps first: a bad file fails before any rendering.
+  std::optional<SunInstant> instant;
+  std::optional<InstantSky> instant_sky;
+  if (!o.sun.time.empty()) {
+    instant = place_sun(o.sun, scene);
+    instant_sky.emplace(o.sun, *instant, o.visibility.directions);
+  }
   std::optional<SkymapFile> sky;
   std::optional<ExposurePyramid> pyramid;
   std::optional<ExposureSampler> sampler;
@@ -126,9 +133,17 @@ int run(const CLI::App& app, Options& o) {
   }
   const ViewBuffers view = render_view_buffers(rays, camera);
   if (view.hits() == 0) std::fprintf(stderr, "Warning: the camera sees no part of the scene (every pixel is sky)\n");
-  const TwoScaleBands bands = two_scale_visibility(view, camera, zenith, o.visibility, sampler ? &*sampler : nullptr);
+  // Without --skymap the instant's map rides on the one visibility pass; with it, a second pass
+  // (the same seed: the same regions) reads the instant's.
+  const ExposureSampler* instant_sampler = instant_sky ? &instant_sky->sampler() : nullptr;
+  const TwoScaleBands bands =
+      two_scale_visibility(view, camera, zenith, o.visibility, sampler ? &*sampler : instant_sampler);
   std::optional<RenderSunBands> sun;
-  if (!o.sun.time.empty()) sun = render_sun(o.sun, scene, rays, view, camera.eye());
+  if (instant) {
+    std::vector<float> diffuse =
+        diffuse_now_of(sampler ? two_scale_visibility(view, camera, zenith, o.visibility, instant_sampler) : bands);
+    sun = render_sun(o.sun, *instant, *instant_sky, scene, rays, view, camera.eye(), std::move(diffuse));
+  }
   std::optional<SvfReference> reference;
   if (o.reference) reference = svf_reference(rays, view, o.reference_rays);
 
@@ -151,7 +166,7 @@ int run(const CLI::App& app, Options& o) {
        {{"DEFINITION",
          "fine-scale visibility, 1 - horizon-based ambient occlusion on the camera's depth (Section 5.2, Eq. 6)"}}},
   };
-  if (sampler) {
+  if (sampler) {  // --skymap's (with only --time the bands hold the instant's, given as diffuse_now)
     out.push_back({"exposure",
                    "kWh m-2",
                    bands.exposure.data(),
@@ -176,6 +191,13 @@ int run(const CLI::App& app, Options& o) {
                    {{"DEFINITION",
                      "beam irradiance on the surface at --time: the clear sky's direct normal irradiance x max(0, "
                      "normal . sun) x the sun band"}}});
+    out.push_back({"diffuse_now",
+                   "W m-2",
+                   sun->diffuse_now.data(),
+                   {{"DEFINITION",
+                     "diffuse irradiance on the surface at --time: the clear sky's radiance over the pixel's visible "
+                     "sky (two-scale visibility, as the exposure bands)"}}});
+    out.push_back({"global_now", "W m-2", sun->global_now.data(), {{"DEFINITION", "direct_now + diffuse_now"}}});
   }
   out.push_back(
       {"depth", "metre", view.depth.data(), {{"DEFINITION", "distance from the camera along the pixel's ray"}}});
@@ -226,6 +248,7 @@ int run(const CLI::App& app, Options& o) {
   if (sun) meta.insert(sun->metadata.begin(), sun->metadata.end());
   if (reference) meta["REFERENCE_RAYS"] = std::to_string(o.reference_rays);
   write_bands(output, view.width, view.height, GeoReference{}, out, wo);
+  if (sun) write_render_sun_pictures(o.sun, *instant, *sun, camera, view, o.out.overwrite);
 
   if (!o.preview.path.empty()) {
     const OutputBand& band = out[drawn];
@@ -346,7 +369,7 @@ Runner setup(CLI::App& app) {
   add_output_options(app, o->out);
   app.footer(
       "Bands: svf, svf_large, svf_fine, [exposure, exposure_direct, exposure_diffuse with --skymap], [sunlit or "
-      "sun_fraction, direct_now with --time], depth, normal_x, "
+      "sun_fraction, direct_now, diffuse_now, global_now with --time], depth, normal_x, "
       "normal_y, normal_z, [svf_reference, svf_reference_stderr with --reference]; a pixel grid without "
       "geotransform, NaN where the pixel sees sky. See docs/commands/render.md.");
   return [o, &app] { return run(app, *o); };

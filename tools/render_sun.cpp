@@ -11,7 +11,12 @@
 #include "skyview/core/error.h"
 #include "skyview/core/number_text.h"
 #include "skyview/raster/ground_frame.h"
+#include "skyview/raster/output_files.h"
 #include "skyview/raster/raster_site.h"
+#include "skyview/render/colour_view.h"
+#include "skyview/render/shadow_difference.h"
+#include "skyview/render/shadow_error.h"
+#include "skyview/sky/exposure_map.h"
 #include "skyview/sky/exposure_steps.h"
 #include "skyview/sky/sky_models.h"
 #include "skyview/solar/civil_time.h"
@@ -85,12 +90,18 @@ void add_render_sun_options(CLI::App& app, RenderSunOptions& o) {
   app.add_option("--turbidity", o.turbidity,
                  "Turbidity of the Preetham clear sky whose beam gives direct_now (2 .. 10)")
       ->capture_default_str();
+  app.add_option("--colour-out", o.colour_out,
+                 "Also write the view in colour at --time (PNG): the clear sky and the sun's disc behind the city, "
+                 "grey surfaces lit by global_now, one fixed tone mapping for every instant");
+  app.add_option("--shadow-diff", o.shadow_diff,
+                 "With a shadow-map method: a PNG of its differences from exact shadow rays (leaks red, acne blue, "
+                 "agreement grey)");
 }
 
 void check_render_sun_options(const CLI::App& app, RenderSunOptions& o) {
   const bool timed = !o.time.empty();
   for (const char* name : {"--tz", "--lat", "--lon", "--elevation", "--shadows", "--soft", "--shadow-map-size",
-                           "--cascades", "--layers", "--turbidity"}) {
+                           "--cascades", "--layers", "--turbidity", "--colour-out", "--shadow-diff"}) {
     refuse_unused(app, name, timed, "runs with --time");
   }
   if (!timed) return;
@@ -101,6 +112,9 @@ void check_render_sun_options(const CLI::App& app, RenderSunOptions& o) {
   refuse_unused(app, "--shadow-map-size", has_maps(method), "the shadow-map methods (not --shadows exact)");
   refuse_unused(app, "--cascades", has_cascades(method), "--shadows csm and hsm");
   refuse_unused(app, "--layers", has_layers(method), "--shadows lvsm and hsm");
+  refuse_unused(app, "--shadow-diff", has_maps(method), "the shadow-map methods (not --shadows exact)");
+  if (!o.colour_out.empty()) require_extension(o.colour_out, {".png"}, "--colour-out");
+  if (!o.shadow_diff.empty()) require_extension(o.shadow_diff, {".png"}, "--shadow-diff");
   if (!(o.turbidity >= 2.0 && o.turbidity <= 10.0))
     throw UsageError("--turbidity must be within 2 .. 10 (the Preetham sky's range)");
   ShadowOptions s = options_for(o, method);
@@ -114,8 +128,7 @@ void check_render_sun_options(const CLI::App& app, RenderSunOptions& o) {
 
 std::string sun_band_name(const RenderSunOptions& o) { return o.soft ? "sun_fraction" : "sunlit"; }
 
-RenderSunBands render_sun(const RenderSunOptions& o, const Scene& scene, const RayScene& rays, const ViewBuffers& view,
-                          const Vec3d& eye) {
+SunInstant place_sun(const RenderSunOptions& o, const Scene& scene) {
   const ParsedTime when = parse_time_option(o.time, o.tz);
   const auto [lo, hi] = scene.bounds();
   const double cx = scene.origin[0] + 0.5 * (lo[0] + hi[0]), cy = scene.origin[1] + 0.5 * (lo[1] + hi[1]);
@@ -127,14 +140,50 @@ RenderSunBands render_sun(const RenderSunOptions& o, const Scene& scene, const R
     g.geotransform = {cx - 0.5, 1, 0, cy + 0.5, 0, -1};
     centre = raster_centre_geographic(g, 1, 1);
   }
-  std::string source;
-  const Site site =
-      sun_site(centre, scene.origin[2] + lo[2], "the scene", "the scene's centre", o.lat, o.lon, o.elevation, source);
-  const SunPosition sun = solar_position(when.unix_utc, site);
-  require_sun_up(sun, when.unix_utc, site);
-  const double grid_azimuth = grid_azimuth_of_true(sun.azimuth_deg * kDegree, scene, cx, cy);
-  const Vec3f s = sun_direction_of(grid_azimuth, sun.elevation_deg * kDegree);
+  SunInstant s;
+  s.unix_utc = when.unix_utc;
+  s.site = sun_site(centre, scene.origin[2] + lo[2], "the scene", "the scene's centre", o.lat, o.lon, o.elevation,
+                    s.site_source);
+  s.position = solar_position(when.unix_utc, s.site);
+  require_sun_up(s.position, when.unix_utc, s.site);
+  s.grid_azimuth = grid_azimuth_of_true(s.position.azimuth_deg * kDegree, scene, cx, cy);
+  s.direction = sun_direction_of(s.grid_azimuth, s.position.elevation_deg * kDegree);
+  s.conditions.sun_zenith = s.position.zenith_deg * kDegree;
+  s.conditions.sun_azimuth = s.grid_azimuth;
+  s.conditions.day_of_year = day_of_year_utc(when.unix_utc);
+  s.direct_normal = make_preetham_sky(o.turbidity)->at(s.conditions)->direct_normal();
+  return s;
+}
 
+namespace {
+
+ExposureMap instant_map(const RenderSunOptions& o, const SunInstant& sun, int width, int height) {
+  const ExposureStep step{sun.conditions, 1.0};  // one hour: Wh becomes W
+  ExposureOptions eo;
+  eo.width = width;
+  eo.height = height;
+  return integrate_exposure(*make_preetham_sky(o.turbidity), std::span<const ExposureStep>(&step, 1), eo);
+}
+
+}  // namespace
+
+InstantSky::InstantSky(const RenderSunOptions& o, const SunInstant& sun, int directions)
+    : width_(std::max(512, directions)),
+      height_(256),
+      diffuse_horizontal_(make_preetham_sky(o.turbidity)->at(sun.conditions)->diffuse_horizontal()),
+      pyramid_(instant_map(o, sun, width_, height_)),
+      sampler_(pyramid_, directions) {}
+
+std::vector<float> diffuse_now_of(const TwoScaleBands& bands) {
+  std::vector<float> out(bands.exposure_diffuse.values().begin(), bands.exposure_diffuse.values().end());
+  for (float& v : out) v *= 1000.0f;  // kWh over one hour to W
+  return out;
+}
+
+RenderSunBands render_sun(const RenderSunOptions& o, const SunInstant& sun, const InstantSky& sky, const Scene& scene,
+                          const RayScene& rays, const ViewBuffers& view, const Vec3d& eye,
+                          std::vector<float> diffuse_now) {
+  const Vec3f s = sun.direction;
   // Receivers: the pixels that see the scene.
   const std::size_t n = view.position.size();
   ShadowReceivers receivers;
@@ -149,29 +198,28 @@ RenderSunBands render_sun(const RenderSunOptions& o, const Scene& scene, const R
   ShadowOptions so = options_for(o, method);
   so.eye = Vec3f{static_cast<float>(eye[0]), static_cast<float>(eye[1]), static_cast<float>(eye[2])};
   const ShadowResult shade = sun_visibility(rays, scene, s, receivers, method, so);
-
-  SkyConditions c;
-  c.sun_zenith = sun.zenith_deg * kDegree;
-  c.sun_azimuth = sun.azimuth_deg * kDegree;
-  c.day_of_year = day_of_year_utc(when.unix_utc);
-  const double dni = make_preetham_sky(o.turbidity)->at(c)->direct_normal();
+  const double dni = sun.direct_normal;
 
   RenderSunBands out;
   const float nan = std::numeric_limits<float>::quiet_NaN();
   out.visibility.assign(n, nan);
   out.direct_now.assign(n, nan);
+  out.diffuse_now = std::move(diffuse_now);
+  out.global_now.assign(n, nan);
   double lit = 0;
   for (std::size_t k = 0; k < pixel.size(); ++k) {
     const Vec3f& nv = receivers.normals[k];
     const double cosi = std::max(0.0, double(nv[0]) * s[0] + double(nv[1]) * s[1] + double(nv[2]) * s[2]);
     const float v = shade.visibility[k];
-    out.visibility[pixel[k]] = v;
-    out.direct_now[pixel[k]] = static_cast<float>(dni * cosi * v);
+    const std::size_t i = pixel[k];
+    out.visibility[i] = v;
+    out.direct_now[i] = static_cast<float>(dni * cosi * v);
+    out.global_now[i] = out.direct_now[i] + out.diffuse_now[i];
     lit += v;
   }
   auto& m = out.metadata;
-  add_sun_instant_metadata(m, o.time, o.tz, when.unix_utc, site, source, sun);
-  m["SUN_GRID_AZIMUTH_DEG"] = number_text(grid_azimuth / kDegree);
+  add_sun_instant_metadata(m, o.time, o.tz, sun.unix_utc, sun.site, sun.site_source, sun.position);
+  m["SUN_GRID_AZIMUTH_DEG"] = number_text(sun.grid_azimuth / kDegree);
   m["SHADOW_METHOD"] = shadow_method_name(method);
   if (has_maps(method)) {
     m["SHADOW_MAP_SIZE"] = std::to_string(so.map_size);
@@ -183,15 +231,60 @@ RenderSunBands render_sun(const RenderSunOptions& o, const Scene& scene, const R
   if (o.soft) m["SHADOW_SOFT_SAMPLES"] = std::to_string(so.soft_samples);
   m["SHADOW_MAP_SECONDS"] = number_text(std::round(shade.map_seconds * 1e4) / 1e4);
   m["SHADOW_LOOKUP_SECONDS"] = number_text(std::round(shade.lookup_seconds * 1e4) / 1e4);
+  std::string error_text;
+  if (has_maps(method)) {
+    // The exact rays on the same receivers: the method's error in this very view.
+    const ShadowResult exact = sun_visibility(rays, scene, s, receivers, ShadowMethod::exact, so);
+    const ShadowError e = shadow_error(rays, s, receivers, exact, shade, so);
+    out.exact.assign(n, nan);
+    for (std::size_t k = 0; k < pixel.size(); ++k) out.exact[pixel[k]] = exact.visibility[k];
+    auto pct = [&](std::size_t c) { return number_text(std::round(100 * e.share(c) * 1e4) / 1e4); };
+    m["SHADOW_EXACT_SECONDS"] = number_text(std::round(exact.seconds() * 1e4) / 1e4);
+    m["SHADOW_ERROR_RECEIVERS"] = std::to_string(e.receivers);
+    m["SHADOW_ERROR_WRONG_PCT"] = pct(e.wrong);
+    m["SHADOW_ERROR_EDGES_PCT"] = pct(e.wrong_edge);
+    m["SHADOW_ERROR_INTERIORS_PCT"] = pct(e.wrong_interior);
+    m["SHADOW_ERROR_LEAKS_PCT"] = pct(e.leaks);
+    m["SHADOW_ERROR_ACNE_PCT"] = pct(e.acne);
+    m["SHADOW_ERROR_EDGE_RECEIVERS_PCT"] = pct(e.edge_receivers);
+    m["SHADOW_ERROR_MEAN_ABS"] = number_text(std::round(e.mean_abs * 1e6) / 1e6);
+    m["SHADOW_ERROR_DEFINITION"] =
+        "percent of the pixels on the scene whose sunlit state (visibility >= 0.5) differs from exact shadow rays': "
+        "EDGES within two map texels of the exact shadow's boundary, INTERIORS elsewhere; LEAKS sunlit where the "
+        "rays see shadow, ACNE shadow where they see the sun (docs/shadows.md)";
+    char text[120];
+    std::snprintf(text, sizeof text, "; %.2f%% wrong against exact rays (%.2f%% leaks, %.2f%% acne)",
+                  100 * e.wrong_share(), 100 * e.share(e.leaks), 100 * e.share(e.acne));
+    error_text = text;
+  }
   m["DIRECT_NORMAL_W_M2"] = number_text(std::round(dni * 10) / 10);
   m["DIRECT_SKY"] = "preetham, turbidity " + number_text(o.turbidity) +
                     " (Rayleigh + Angstrom aerosol transmittance of a 5778 K sun, docs/sky.md)";
+  m["DIFFUSE_HORIZONTAL_W_M2"] = number_text(std::round(sky.diffuse_horizontal() * 10) / 10);
+  m["DIFFUSE_SKY"] = "preetham, turbidity " + number_text(o.turbidity) +
+                     " (luminance / 125 lm/W), as an exposure map of the instant " + std::to_string(sky.map_width()) +
+                     "x" + std::to_string(sky.map_height()) + " read through the two-scale visibility";
   char what[200];
   std::snprintf(what, sizeof what, "sun at azimuth %.2f, elevation %.2f deg; %.1f%% of pixels sunlit (%s)",
-                sun.azimuth_deg, sun.elevation_deg, pixel.empty() ? 0.0 : 100.0 * lit / pixel.size(),
+                sun.position.azimuth_deg, sun.position.elevation_deg, pixel.empty() ? 0.0 : 100.0 * lit / pixel.size(),
                 shadow_method_name(method).c_str());
-  out.summary = what;
+  out.summary = what + error_text;
   return out;
+}
+
+void write_render_sun_pictures(const RenderSunOptions& o, const SunInstant& sun, const RenderSunBands& bands,
+                               const Camera& camera, const ViewBuffers& view, bool overwrite) {
+  if (!o.colour_out.empty()) {
+    ColourViewOptions co;
+    co.turbidity = o.turbidity;
+    const ColourViewSun cs{sun.conditions.sun_zenith, sun.grid_azimuth, sun.direct_normal};
+    const std::vector<std::uint8_t> rgb = colour_view(camera, view, bands.global_now, cs, co);
+    write_png(o.colour_out, view.width, view.height, 3, rgb.data(), overwrite);
+  }
+  if (!o.shadow_diff.empty()) {
+    const std::vector<std::uint8_t> rgb = shadow_difference_picture(bands.visibility, bands.exact);
+    write_png(o.shadow_diff, view.width, view.height, 3, rgb.data(), overwrite);
+  }
 }
 
 }  // namespace skyview::cli

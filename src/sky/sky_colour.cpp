@@ -43,6 +43,15 @@ SkyColour::SkyColour(double turbidity, double sun_zenith, double sun_azimuth, do
   exposure_ = key / (1.0 - key) / preetham::zenith(turbidity, sun_zenith).Y;
 }
 
+SkyColour::SkyColour(double turbidity, double sun_zenith, double sun_azimuth, FixedTone tone)
+    : SkyColour(turbidity, sun_zenith, sun_azimuth, tone.key) {
+  if (!(tone.luminance > 0.0) || !std::isfinite(tone.luminance))
+    throw Error("the sky's fixed tone-mapping luminance must be positive");
+  exposure_ = tone.key / (1.0 - tone.key) / tone.luminance;
+}
+
+FixedTone reference_tone() { return {preetham::zenith(3.0, M_PI / 4).Y, 0.5}; }
+
 preetham::Yxy SkyColour::yxy(double zenith, double azimuth) const {
   // Angle between the view direction and the sun (spherical law of cosines).
   const double cos_gamma = std::cos(zenith) * std::cos(sun_zenith_) +

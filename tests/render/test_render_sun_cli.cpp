@@ -72,7 +72,7 @@ TEST(RenderSunCli, BoxShadowEndsAtHOverTanElevationAlongTheAntiSolarAzimuth) {
   EXPECT_EQ(sunlit.description, "sunlit");
   EXPECT_EQ(direct.description, "direct_now");
   EXPECT_EQ(direct.unit, "W m-2");
-  EXPECT_EQ(read_band(out, 6).description, "depth");
+  EXPECT_EQ(read_band(out, 8).description, "depth");
   EXPECT_EQ(metadata(out, "SHADOW_METHOD"), "exact");
 
   const SunPosition sun = solar_position(parse_time(kTime).unix_utc, Site{48.0, 11.0, 0.0});

@@ -3,8 +3,9 @@
 // chromaticity (Yxy, preetham.h) -> CIE XYZ -> linear sRGB -> tone-mapped, sRGB-encoded 8-bit.
 // Tone mapping is Reinhard's L/(1 + L) on luminance, scaled so that the zenith sits at `key`, with
 // the linear colour scaled by the same factor (so the chromaticity is kept until a channel clips,
-// and then the colour is scaled down whole, hue kept). Angles in radians, azimuths clockwise from
-// north.
+// and then the colour is scaled down whole, hue kept). A FixedTone instead maps one absolute
+// luminance to the key whatever the sun's height, so that pictures of two instants compare (the sky
+// of a low sun is darker). Angles in radians, azimuths clockwise from north.
 #include <cstdint>
 
 #include "skyview/sky/preetham.h"
@@ -23,12 +24,25 @@ Srgb8 to_srgb8(const preetham::LinearRgb& c, double scale);
 // The chromaticity (x, y) of a linear sRGB colour (inverse of preetham::to_linear_srgb).
 preetham::Yxy linear_srgb_to_yxy(const preetham::LinearRgb& c);
 
+// Tone mapping fixed in absolute terms: `luminance` (cd/m²) is shown at `key` (0..1).
+struct FixedTone {
+  double luminance = 0;
+  double key = 0.5;
+};
+
+// The fixed tone of camera views at an instant (skyview render --time): the zenith of a clear sky of
+// turbidity 3 with the sun 45° high (7.33 kcd/m²) shown at key 0.5.
+FixedTone reference_tone();
+
 class SkyColour {
  public:
   // `key`: the tone-mapped luminance the zenith gets (0..1), 0.5 by default. Throws skyview::Error
   // for a turbidity outside Preetham's accepted range (2..10) or a sun below the horizon (the model
   // has no twilight).
   SkyColour(double turbidity, double sun_zenith, double sun_azimuth, double key = 0.5);
+  // The same sky under a fixed tone mapping (throws as above, and for a luminance that is not
+  // positive or a key outside 0..1).
+  SkyColour(double turbidity, double sun_zenith, double sun_azimuth, FixedTone tone);
 
   // Sky luminance and chromaticity looking at (zenith angle, azimuth).
   preetham::Yxy yxy(double zenith, double azimuth) const;
