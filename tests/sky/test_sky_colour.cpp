@@ -55,6 +55,24 @@ TEST(SkyColour, ToneMapPutsTheZenithAtTheKeyAndBrightensTowardsTheSun) {
   EXPECT_GT(near.r + near.g + near.b, far.r + far.g + far.b);
 }
 
+// The fixed tone of render --time: the zenith of T = 3 with the sun 45° high (Preetham's Y_z =
+// 7.33 kcd/m²) shows at key 0.5 whatever the sky; a sky of a lower sun is shown darker.
+TEST(SkyColour, FixedToneShowsTwoInstantsOnOneScale) {
+  const FixedTone tone = reference_tone();
+  EXPECT_NEAR(tone.luminance, 7330, 10);
+  EXPECT_EQ(tone.key, 0.5);
+  const SkyColour reference(3.0, 45 * kDeg, 0.0, tone), keyed(3.0, 45 * kDeg, 0.0, 0.5);
+  const Srgb8 a = reference.display(0.0, 0.0), b = keyed.display(0.0, 0.0);
+  EXPECT_EQ(a.r, b.r);
+  EXPECT_EQ(a.g, b.g);
+  EXPECT_EQ(a.b, b.b);
+  const Srgb8 low = SkyColour(3.0, 75 * kDeg, 0.0, tone).display(0.0, 0.0);
+  const Srgb8 low_keyed = SkyColour(3.0, 75 * kDeg, 0.0, 0.5).display(0.0, 0.0);
+  EXPECT_LT(low.r + low.g + low.b + 60, a.r + a.g + a.b);
+  EXPECT_LT(low.r + low.g + low.b + 60, low_keyed.r + low_keyed.g + low_keyed.b);
+  EXPECT_THROW(SkyColour(3.0, 45 * kDeg, 0.0, FixedTone{0.0, 0.5}), Error);
+}
+
 TEST(SkyColour, SrgbTransferFollowsTheStandard) {
   EXPECT_DOUBLE_EQ(srgb_encode(0.0), 0.0);
   EXPECT_DOUBLE_EQ(srgb_encode(1.0), 1.0);
