@@ -10,6 +10,7 @@
 #include "sky_job.h"
 #include "skyview/benchmark/exposure_benchmark.h"
 #include "skyview/benchmark/method_benchmark.h"
+#include "skyview/benchmark/shadow_benchmark.h"
 #include "skyview/core/error.h"
 #include "skyview/raster/raster_io.h"
 
@@ -125,19 +126,63 @@ int bench_exposure(const std::string& input, const std::string& out, int band, d
   return 0;
 }
 
+// skyview bench --shadows: the shadow-map family against exact rays on docs/shadows.md's views,
+// and a far view of INPUT (any scene input) where given.
+int bench_shadows(const std::string& input, const std::string& out, int repeat, bool overwrite, bool quiet) {
+  OutFolder folder(out, {"shadows.json", "shadows.md"}, {input}, overwrite);
+  const std::string work = (std::filesystem::temp_directory_path() / "skyview_bench_shadows").string();
+  std::vector<ShadowBenchView> views;
+  const auto city = load_shadow_bench_scene("city", work);
+  const auto city_rays = std::make_shared<const RayScene>(*city);
+  views.push_back(make_shadow_bench_view("city_far", city, city_rays));
+  views.push_back(make_shadow_bench_view("city_near", city, city_rays));
+  views.push_back(make_shadow_bench_view("district", load_shadow_bench_scene("district", work)));
+  if (!input.empty()) {
+    views.push_back(
+        make_shadow_bench_view(std::filesystem::path(input).stem().string(), load_shadow_bench_scene(input, work)));
+  }
+  std::vector<ShadowBenchRow> rows;
+  for (const ShadowBenchView& v : views) {
+    for (ShadowMethod m : {ShadowMethod::exact, ShadowMethod::pcf, ShadowMethod::vsm, ShadowMethod::lvsm,
+                           ShadowMethod::csm, ShadowMethod::hsm}) {
+      rows.push_back(run_shadow_bench(v, m, repeat));
+      if (!quiet) {
+        const ShadowBenchRow& r = rows.back();
+        std::fprintf(stderr, "%-10s %-5s %8.1f ms  wrong %.3f %%\n", v.name.c_str(), shadow_method_name(m).c_str(),
+                     1000 * r.seconds, 100 * r.error.wrong_share());
+      }
+    }
+  }
+  std::string md = shadow_bench_markdown(rows);
+  md +=
+      "\nReceivers: the first hits of a 400 x 300 pinhole camera; sun at azimuth 215, elevation 30 deg; default "
+      "options (docs/shadows.md); ms: median wall time of " +
+      std::to_string(repeat) + " runs, CPU ms: the process's user + system time per run.\n";
+  nlohmann::json json;
+  json["rows"] = shadow_bench_json(rows);
+  json["repeat"] = repeat;
+  write_output_file(out + "/shadows.json", json.dump(2) + "\n", overwrite);
+  write_output_file(out + "/shadows.md", md, overwrite);
+  std::fputs(md.c_str(), stdout);
+  folder.keep();
+  return 0;
+}
+
 Runner setup(CLI::App& app) {
   struct Options {
     std::string input, methods = "sampled,march,sweep", out = "bench-out", azimuth_origin = "grid";
     int band = 1, reference_directions = 64, repeat = 3;
     double z_scale = 0.0;  // 0: from the raster
-    bool overwrite = false, quiet = false, exposure = false;
+    bool overwrite = false, quiet = false, exposure = false, shadows = false;
     int threads = 0, map_size = 512;
     SkyRequest sky;
     const CLI::App* app = nullptr;
   };
   auto o = std::make_shared<Options>();
   o->app = &app;
-  app.add_option("input", o->input, "Elevation raster")->required();
+  app.add_option("input", o->input,
+                 "Elevation raster (required); with --shadows, an optional scene (any skyview scene input) seen from "
+                 "far besides the synthetic views");
   app.add_option("--methods", o->methods, "Comma-separated methods")->capture_default_str();
   app.add_option("--out", o->out, "Folder for bench.json, bench.md and bench.png")->capture_default_str();
   app.add_option("--reference-directions", o->reference_directions, "Directions of the ray-cast reference")
@@ -163,6 +208,9 @@ Runner setup(CLI::App& app) {
                "Bench skyview exposure instead: the fast method's settings against the exact one (exposure.json, "
                "exposure.md, exposure.png), with the sky options below");
   add_sky_options(app, o->sky, "--exposure; default: the raster's centre");
+  app.add_flag("--shadows", o->shadows,
+               "Bench the sun-shadow methods instead (exact rays, pcf, vsm, lvsm, csm, hsm) against exact rays on the "
+               "synthetic city (far and near), a footprint district and INPUT if given (shadows.json, shadows.md)");
   app.add_option("--map-size", o->map_size, "--exposure: the exposure map's width and height")->capture_default_str();
   app.add_flag("--overwrite", o->overwrite, "Replace existing result files");
   app.add_flag("-q,--quiet", o->quiet, "No per-configuration lines on stderr");
@@ -174,6 +222,13 @@ Runner setup(CLI::App& app) {
     ThreadLimit limit(o->threads);
     for (const std::string& name : sky_option_names()) refuse_unused(*o->app, name, o->exposure, "--exposure");
     refuse_unused(*o->app, "--map-size", o->exposure, "--exposure");
+    if (o->shadows) {
+      refuse_unused(*o->app, "--exposure", false, "runs without --shadows");
+      for (const char* name : {"--methods", "--azimuth-origin", "--reference-directions", "--band", "--z-scale"})
+        refuse_unused(*o->app, name, false, "runs without --shadows");
+      return bench_shadows(o->input, o->out, o->repeat, o->overwrite, o->quiet);
+    }
+    if (o->input.empty()) throw UsageError("bench needs INPUT, the elevation raster");
     if (o->exposure) {
       refuse_unused(*o->app, "--methods", false, "runs without --exposure (--exposure benches its own settings)");
       refuse_unused(*o->app, "--azimuth-origin", false, "runs without --exposure (its runs start on grid north)");
