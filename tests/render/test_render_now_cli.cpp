@@ -94,6 +94,38 @@ TEST(RenderNowCli, OpenPlaneGetsTheSkysDiffuseHorizontalIrradiance) {
   }
 }
 
+// With --skymap the visibility pass reads the period's map and a second pass with the same seed
+// reads the instant's: diffuse_now is the same as without --skymap, to the bit, and the box's
+// neighbourhood (where the regions matter) is in view.
+TEST(RenderNowCli, DiffuseNowIsTheSameWithAndWithoutASkymap) {
+  const std::string dir = temp_dir("render-now");
+  const std::string obj = write_scene(dir, true), map = dir + "/sky.tif";
+  ASSERT_EQ(run_skyview("skymap " + map +
+                            " --no-preview --lat 48 --lon 11 --from 2024-06-21T00:00Z --to 2024-06-22T00:00Z --step 1h "
+                            "--size 64",
+                        dir)
+                .exit_code,
+            0);
+  const std::string small =
+      " --camera 0,0,300 --look-at 0,0,0 --up 0,1,0 --orthographic 60 --size 60x60 --zenith-res 1";
+  RunResult r = run_skyview("render " + obj + " " + dir + "/a.tif" + small + kSun, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_skyview("render " + obj + " " + dir + "/b.tif" + small + kSun + " --skymap " + map, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const RasterBand a = read_band(dir + "/a.tif", 6), b = read_band(dir + "/b.tif", 9);
+  ASSERT_EQ(a.description, "diffuse_now");
+  ASSERT_EQ(b.description, "diffuse_now");
+  float low = 1e9f, high = 0;
+  for (int row = 0; row < 60; ++row) {
+    for (int col = 0; col < 60; ++col) {
+      ASSERT_EQ(a.values(col, row), b.values(col, row)) << col << "," << row;
+      low = std::min(low, a.values(col, row));
+      high = std::max(high, a.values(col, row));
+    }
+  }
+  EXPECT_LT(low, 0.9f * high);  // the box takes sky from the ground beside it
+}
+
 // The box hides part of the sky from the ground beside it and its shadow falls there: in colour,
 // the shadow is darker than the open ground, both lighter than black; diffuse_now next to the box
 // is below the open plane's.
