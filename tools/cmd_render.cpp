@@ -7,6 +7,7 @@
 
 #include "command.h"
 #include "preview_options.h"
+#include "render_points.h"
 #include "render_sun.h"
 #include "scene_options.h"
 #include "skyview/core/error.h"
@@ -36,7 +37,7 @@ struct Options {
   bool reference = false;
   int reference_rays = 128;
   PreviewOptions preview;
-  std::string diff_preview;
+  std::string diff_preview, points_out;
   OutputOptions out;
 };
 
@@ -50,6 +51,7 @@ int run(const CLI::App& app, Options& o) {
   o.scene.inputs.pop_back();
   if (!o.diff_preview.empty()) require_extension(o.diff_preview, {".png"}, "--diff-preview");
   if (!o.zenith_out.empty()) require_extension(o.zenith_out, {".tif", ".tiff"}, "--save-zenith");
+  if (!o.points_out.empty()) require_extension(o.points_out, {".las"}, "--points-out");
   refuse_unused(app, "--diff-preview", o.reference, "runs with --reference");
   refuse_unused(app, "--reference-rays", o.reference, "runs with --reference");
   refuse_unused(app, "--reads", !o.skymap.empty(), "runs with --skymap");
@@ -77,13 +79,13 @@ int run(const CLI::App& app, Options& o) {
   spec.orthographic_width = o.orthographic;
   Camera probe(spec, {0, 0, 0});  // option checks before the scene is read
   o.visibility.combine = o.combine == "intersect" ? ScaleCombination::intersect : ScaleCombination::multiply;
-  check_outputs_apart({output, o.preview.path, o.diff_preview, o.zenith_out}, [&] {
+  check_outputs_apart({output, o.preview.path, o.diff_preview, o.zenith_out, o.points_out}, [&] {
     auto in = o.scene.inputs;
     in.push_back(o.skymap);
     in.push_back(o.zenith_in);
     return in;
   }());
-  for (const std::string& path : {output, o.preview.path, o.diff_preview, o.zenith_out}) {
+  for (const std::string& path : {output, o.preview.path, o.diff_preview, o.zenith_out, o.points_out}) {
     if (!path.empty()) check_output_writable(path, o.out.overwrite);
   }
   check_output_format(output, o.out.format, 15, o.out.creation_options);
@@ -226,6 +228,7 @@ int run(const CLI::App& app, Options& o) {
   if (sun) meta.insert(sun->metadata.begin(), sun->metadata.end());
   if (reference) meta["REFERENCE_RAYS"] = std::to_string(o.reference_rays);
   write_bands(output, view.width, view.height, GeoReference{}, out, wo);
+  if (!o.points_out.empty()) write_render_points(o.points_out, view, scene, out);
 
   if (!o.preview.path.empty()) {
     const OutputBand& band = out[drawn];
@@ -343,6 +346,8 @@ Runner setup(CLI::App& app) {
   add_preview_options(app, o->preview,
                       "Also write a false-colour PNG of the svf band, or --preview-band's, with a legend");
   app.add_option("--diff-preview", o->diff_preview, "With --reference: a PNG of svf - svf_reference");
+  app.add_option("--points-out", o->points_out,
+                 "Also write the visible points as a LAS 1.4 point cloud in the scene's CRS, the bands as extra bytes");
   add_output_options(app, o->out);
   app.footer(
       "Bands: svf, svf_large, svf_fine, [exposure, exposure_direct, exposure_diffuse with --skymap], [sunlit or "
