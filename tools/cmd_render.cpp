@@ -7,6 +7,8 @@
 
 #include "command.h"
 #include "preview_options.h"
+#include "render_exposure_reference.h"
+#include "render_points.h"
 #include "render_sun.h"
 #include "scene_options.h"
 #include "skyview/core/error.h"
@@ -36,7 +38,7 @@ struct Options {
   bool reference = false;
   int reference_rays = 128;
   PreviewOptions preview;
-  std::string diff_preview;
+  std::string diff_preview, points_out;
   OutputOptions out;
 };
 
@@ -50,6 +52,7 @@ int run(const CLI::App& app, Options& o) {
   o.scene.inputs.pop_back();
   if (!o.diff_preview.empty()) require_extension(o.diff_preview, {".png"}, "--diff-preview");
   if (!o.zenith_out.empty()) require_extension(o.zenith_out, {".tif", ".tiff"}, "--save-zenith");
+  if (!o.points_out.empty()) require_extension(o.points_out, {".las"}, "--points-out");
   refuse_unused(app, "--diff-preview", o.reference, "runs with --reference");
   refuse_unused(app, "--reference-rays", o.reference, "runs with --reference");
   refuse_unused(app, "--reads", !o.skymap.empty(), "runs with --skymap");
@@ -67,6 +70,8 @@ int run(const CLI::App& app, Options& o) {
   if (!o.sun.time.empty()) names.insert(names.end(), {sun_band_name(o.sun), "direct_now", "diffuse_now", "global_now"});
   names.insert(names.end(), {"depth", "normal_x", "normal_y", "normal_z"});
   if (o.reference) names.insert(names.end(), {"svf_reference", "svf_reference_stderr"});
+  if (o.reference && !o.skymap.empty()) names.insert(names.end(), {"exposure_reference", "exposure_reference_stderr"});
+  const std::string exposure_diff = o.skymap.empty() ? "" : exposure_diff_path(o.diff_preview);
   const std::size_t drawn = check_preview_options(app, o.preview, names, 0);
   CameraSpec spec;
   spec.position = parse_vec3(o.camera, "--camera");
@@ -77,14 +82,16 @@ int run(const CLI::App& app, Options& o) {
   spec.orthographic_width = o.orthographic;
   Camera probe(spec, {0, 0, 0});  // option checks before the scene is read
   o.visibility.combine = o.combine == "intersect" ? ScaleCombination::intersect : ScaleCombination::multiply;
-  check_outputs_apart({output, o.preview.path, o.diff_preview, o.zenith_out, o.sun.colour_out, o.sun.shadow_diff}, [&] {
-    auto in = o.scene.inputs;
-    in.push_back(o.skymap);
-    in.push_back(o.zenith_in);
-    return in;
-  }());
-  for (const std::string& path :
-       {output, o.preview.path, o.diff_preview, o.zenith_out, o.sun.colour_out, o.sun.shadow_diff}) {
+  check_outputs_apart({output, o.preview.path, o.diff_preview, exposure_diff, o.zenith_out, o.sun.colour_out,
+                       o.sun.shadow_diff, o.points_out},
+                      [&] {
+                        auto in = o.scene.inputs;
+                        in.push_back(o.skymap);
+                        in.push_back(o.zenith_in);
+                        return in;
+                      }());
+  for (const std::string& path : {output, o.preview.path, o.diff_preview, exposure_diff, o.zenith_out, o.sun.colour_out,
+                                  o.sun.shadow_diff, o.points_out}) {
     if (!path.empty()) check_output_writable(path, o.out.overwrite);
   }
   check_output_format(output, o.out.format, 15, o.out.creation_options);
@@ -146,6 +153,8 @@ int run(const CLI::App& app, Options& o) {
   }
   std::optional<SvfReference> reference;
   if (o.reference) reference = svf_reference(rays, view, o.reference_rays);
+  std::optional<ExposureReference> exposure_ref;
+  if (o.reference && sky) exposure_ref = exposure_reference(rays, view, sky->map, o.reference_rays);
 
   // Depth and normals as bands; the normal in (east, north, up) of the scene's CRS.
   const std::size_t n = view.position.size();
@@ -215,6 +224,7 @@ int run(const CLI::App& app, Options& o) {
                    reference->stderr_.data(),
                    {{"DEFINITION", "binomial standard error of svf_reference, sqrt(p(1-p)/rays)"}}});
   }
+  if (exposure_ref) add_exposure_reference_bands(out, *exposure_ref);
   auto& meta = wo.metadata;
   meta["SKYVIEW_COMMAND"] = command_line();
   meta["RENDER_METHOD"] = "two-scale screen-space sky visibility";
@@ -249,6 +259,7 @@ int run(const CLI::App& app, Options& o) {
   if (reference) meta["REFERENCE_RAYS"] = std::to_string(o.reference_rays);
   write_bands(output, view.width, view.height, GeoReference{}, out, wo);
   if (sun) write_render_sun_pictures(o.sun, *instant, *sun, camera, view, o.out.overwrite);
+  if (!o.points_out.empty()) write_render_points(o.points_out, view, scene, out);
 
   if (!o.preview.path.empty()) {
     const OutputBand& band = out[drawn];
@@ -298,6 +309,9 @@ int run(const CLI::App& app, Options& o) {
             number_text(std::round(diff_abs / diff_n * 1000) / 1000) + " (svf_large mean abs " +
             number_text(std::round(large_abs / diff_n * 1000) / 1000) + ")";
   }
+  if (exposure_ref)
+    what += exposure_agreement_text(
+        compare_exposure(bands.exposure, *exposure_ref, exposure_diff, output, o.out.overwrite));
   if (sun) what += "; " + sun->summary;
   summary.print(what, o.out.quiet);
   return 0;
@@ -358,19 +372,25 @@ Runner setup(CLI::App& app) {
   app.add_option("--save-zenith", o->zenith_out, "Also write the zenith map as a GeoTIFF, to reuse with --zenith");
   app.add_option("--zenith", o->zenith_in, "Reuse a zenith map written by --save-zenith for this scene");
   app.add_flag("--reference", o->reference,
-               "Add svf_reference and svf_reference_stderr: per-pixel Embree cosine-weighted hemisphere sampling");
+               "Add svf_reference and svf_reference_stderr (per-pixel Embree cosine-weighted hemisphere sampling) and, "
+               "with --skymap, exposure_reference and exposure_reference_stderr");
   app.add_option("--reference-rays", o->reference_rays, "Rays per pixel of --reference")
       ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
   add_render_sun_options(app, o->sun);
   add_preview_options(app, o->preview,
                       "Also write a false-colour PNG of the svf band, or --preview-band's, with a legend");
-  app.add_option("--diff-preview", o->diff_preview, "With --reference: a PNG of svf - svf_reference");
+  app.add_option("--diff-preview", o->diff_preview,
+                 "With --reference: a PNG of svf - svf_reference (and, with --skymap, D_exposure.png of exposure - "
+                 "exposure_reference)");
+  app.add_option("--points-out", o->points_out,
+                 "Also write the visible points as a LAS 1.4 point cloud in the scene's CRS, the bands as extra bytes");
   add_output_options(app, o->out);
   app.footer(
       "Bands: svf, svf_large, svf_fine, [exposure, exposure_direct, exposure_diffuse with --skymap], [sunlit or "
       "sun_fraction, direct_now, diffuse_now, global_now with --time], depth, normal_x, "
-      "normal_y, normal_z, [svf_reference, svf_reference_stderr with --reference]; a pixel grid without "
+      "normal_y, normal_z, [svf_reference, svf_reference_stderr with --reference], [exposure_reference, "
+      "exposure_reference_stderr with --reference and --skymap]; a pixel grid without "
       "geotransform, NaN where the pixel sees sky. See docs/commands/render.md.");
   return [o, &app] { return run(app, *o); };
 }

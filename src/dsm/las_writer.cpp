@@ -91,6 +91,27 @@ std::vector<std::uint8_t> geokeys_of(const OGRSpatialReference& srs) {
   return body;
 }
 
+// The Extra Bytes VLR (LAS 1.4 R15, 2.6.3): one 192-byte descriptor per attribute, all float32
+// (data type 9) without no-data, range, scale or offset.
+std::vector<std::uint8_t> extra_bytes_vlr(const std::vector<LasExtraBytes>& extra) {
+  std::vector<std::uint8_t> body(192 * extra.size(), 0);
+  for (std::size_t k = 0; k < extra.size(); ++k) {
+    const std::size_t at = 192 * k;
+    body[at + 2] = 9;  // float
+    std::copy_n(extra[k].name.begin(), std::min<std::size_t>(extra[k].name.size(), 31), body.begin() + at + 4);
+    std::copy_n(extra[k].description.begin(), std::min<std::size_t>(extra[k].description.size(), 31),
+                body.begin() + at + 160);
+  }
+  std::vector<std::uint8_t> vlr(54 + body.size(), 0);
+  const std::string user = "LASF_Spec", description = "extra bytes";
+  std::copy(user.begin(), user.end(), vlr.begin() + 2);
+  put<std::uint16_t>(vlr, 18, 4);
+  put<std::uint16_t>(vlr, 20, static_cast<std::uint16_t>(body.size()));
+  std::copy(description.begin(), description.end(), vlr.begin() + 22);
+  std::copy(body.begin(), body.end(), vlr.begin() + 54);
+  return vlr;
+}
+
 }  // namespace
 
 void write_las(const std::string& path, const std::vector<LasPoint>& points, const LasWriteOptions& o) {
@@ -98,6 +119,12 @@ void write_las(const std::string& path, const std::vector<LasPoint>& points, con
   if (base < 0) throw Error("LAS point format must be 0..10");
   if (o.version_minor != 2 && o.version_minor != 4) throw Error("LAS version must be 1.2 or 1.4");
   if (o.point_format > 5 && o.version_minor < 4) throw Error("point formats 6..10 need LAS 1.4");
+  if (!o.extra.empty() && o.version_minor != 4) throw Error("LAS extra bytes need LAS 1.4");
+  if (o.extra.size() > 300) throw Error("too many LAS extra bytes attributes");
+  for (const LasExtraBytes& e : o.extra) {
+    if (e.values.size() != points.size()) throw Error("LAS extra bytes '" + e.name + "' need one value per point");
+  }
+  const int record = base + 4 * static_cast<int>(o.extra.size());
   const std::uint16_t header_size = o.version_minor == 4 ? 375 : 227;
   // The CRS: in LAS 1.2 as GeoTIFF keys, which 1.2 readers expect, where the CRS has an EPSG code,
   // and as WKT too (which readers that know it prefer); in LAS 1.4 as OGC WKT only (record 2112,
@@ -121,6 +148,7 @@ void write_las(const std::string& path, const std::vector<LasPoint>& points, con
     text.push_back(0);
     add_vlr(projection_vlr(2112, "OGC WKT coordinate system", text));
   }
+  if (!o.extra.empty()) add_vlr(extra_bytes_vlr(o.extra));
   std::vector<std::uint8_t> h(header_size, 0);
   const std::string signature = "LASF", system = "skyview", software = "skyview write_las";
   std::copy(signature.begin(), signature.end(), h.begin());
@@ -134,7 +162,7 @@ void write_las(const std::string& path, const std::vector<LasPoint>& points, con
   // Global encoding's WKT bit: the CRS is WKT (point formats 6-10 must use it, with or without one).
   if (o.version_minor == 4 && (vlrs > 0 || o.point_format >= 6)) put<std::uint16_t>(h, 6, 1u << 4);
   h[104] = static_cast<std::uint8_t>(o.point_format);
-  put<std::uint16_t>(h, 105, static_cast<std::uint16_t>(base));
+  put<std::uint16_t>(h, 105, static_cast<std::uint16_t>(record));
   const bool legacy_ok = o.point_format <= 5 && points.size() <= 0xFFFFFFFFu;
   put<std::uint32_t>(h, 107, legacy_ok ? static_cast<std::uint32_t>(points.size()) : 0);
   // Points by return: legacy 32-bit counts of returns 1..5 at 111, and in LAS 1.4 64-bit counts
@@ -165,12 +193,12 @@ void write_las(const std::string& path, const std::vector<LasPoint>& points, con
   }
   // The whole file in one buffer, written under a temporary name and renamed into place: a failed
   // write leaves an old file at `path` as it was.
-  std::string bytes(h.size() + vlr.size() + static_cast<std::size_t>(base) * points.size(), '\0');
+  std::string bytes(h.size() + vlr.size() + static_cast<std::size_t>(record) * points.size(), '\0');
   std::copy(h.begin(), h.end(), bytes.begin());
   std::copy(vlr.begin(), vlr.end(), bytes.begin() + static_cast<std::ptrdiff_t>(h.size()));
   for (std::size_t i = 0; i < points.size(); ++i) {
     const LasPoint& p = points[i];
-    const std::size_t at = h.size() + vlr.size() + i * base;
+    const std::size_t at = h.size() + vlr.size() + i * record;
     put<std::int32_t>(bytes, at, quantise(p.x, o.scale[0], o.offset[0]));
     put<std::int32_t>(bytes, at + 4, quantise(p.y, o.scale[1], o.offset[1]));
     put<std::int32_t>(bytes, at + 8, quantise(p.z, o.scale[2], o.offset[2]));
@@ -182,6 +210,7 @@ void write_las(const std::string& path, const std::vector<LasPoint>& points, con
       bytes[at + 14] = static_cast<char>((p.return_number & 0x07) | ((p.number_of_returns & 0x07) << 3));
       bytes[at + 15] = static_cast<char>(p.classification & 0x1F);
     }
+    for (std::size_t k = 0; k < o.extra.size(); ++k) put<float>(bytes, at + base + 4 * k, o.extra[k].values[i]);
   }
   write_output_file(path, bytes, /*overwrite=*/true);
 }

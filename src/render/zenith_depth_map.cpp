@@ -11,6 +11,7 @@
 #include "skyview/core/error.h"
 #include "skyview/core/number_text.h"
 #include "skyview/raster/raster_read.h"
+#include "zenith_column.h"
 
 namespace skyview {
 namespace {
@@ -28,9 +29,11 @@ double stored_normal_z(const Scene& scene, const RayHit& hit) {
   return n > 0 ? nz / n : 0.0;
 }
 
+}  // namespace
+
 // The solid parts under one texel centre, top down (see the header).
-std::vector<float> column(const Scene& scene, const RayScene& rays, float x, float y, float top, const ZenithOptions& o,
-                          bool& truncated) {
+std::vector<float> zenith_column(const Scene& scene, const RayScene& rays, float x, float y, float top,
+                                 const ZenithOptions& o, bool& truncated) {
   std::vector<float> out;
   bool inside = false;
   float t = 0.0f;
@@ -65,9 +68,7 @@ std::vector<float> column(const Scene& scene, const RayScene& rays, float x, flo
   return out;
 }
 
-}  // namespace
-
-ZenithDepthMap ZenithDepthMap::build(const Scene& scene, const RayScene& rays, const ZenithOptions& o) {
+ZenithDepthMap ZenithDepthMap::frame_of(const RayScene& rays, const ZenithOptions& o) {
   if (!(o.resolution > 0) || !std::isfinite(o.resolution)) throw UsageError("--zenith-res must be a positive number");
   if (o.max_layers < 1 || o.max_layers > 255) throw UsageError("--zenith-layers must be from 1 to 255");
   const auto bounds = rays.bounds();
@@ -85,16 +86,25 @@ ZenithDepthMap ZenithDepthMap::build(const Scene& scene, const RayScene& rays, c
   }
   m.width_ = std::max(1, static_cast<int>(w));
   m.height_ = std::max(1, static_cast<int>(h));
-  const float top = bounds[1][2] + 1.0f;
+  m.ray_top_ = bounds[1][2] + 1.0f;
+  m.merge_gap_ = o.merge_gap;
+  return m;
+}
+
+ZenithDepthMap ZenithDepthMap::build(const Scene& scene, const RayScene& rays, const ZenithOptions& o) {
+  ZenithDepthMap m = frame_of(rays, o);
+  const float top = m.ray_top_;
   std::vector<std::vector<std::vector<float>>> rows(m.height_);
   std::vector<std::int64_t> truncated(m.height_, 0);
+  m.cut_.assign(static_cast<std::size_t>(m.width_) * m.height_, 0);
   tbb::parallel_for(0, m.height_, [&](int row) {
     rows[row].resize(m.width_);
     const float y = float(m.y0_ - (row + 0.5) * o.resolution);
     for (int col = 0; col < m.width_; ++col) {
       bool cut = false;
-      rows[row][col] = column(scene, rays, float(m.x0_ + (col + 0.5) * o.resolution), y, top, o, cut);
+      rows[row][col] = zenith_column(scene, rays, float(m.x0_ + (col + 0.5) * o.resolution), y, top, o, cut);
       truncated[row] += cut;
+      m.cut_[m.index(col, row)] = cut;
     }
   });
   m.counts_.resize(static_cast<std::size_t>(m.width_) * m.height_);
@@ -163,6 +173,7 @@ ZenithDepthMap ZenithDepthMap::load(const std::string& path, const Scene& scene)
                 std::to_string(scene.triangle_count()) + ": make it again with --save-zenith");
   }
   ZenithDepthMap m;
+  m.ray_top_ = std::numeric_limits<float>::quiet_NaN();  // unknown: update_region refuses
   const int layers = ds->GetRasterCount();
   m.max_layers_ = std::atoi(max_layers);  // before the dataset (which owns the text) is closed
   ds.reset();

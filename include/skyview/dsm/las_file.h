@@ -61,6 +61,14 @@ class LasReader {
   std::string name_;
 };
 
+// A per-point attribute written as LAS 1.4 extra bytes (float32, one value per point, described in
+// the Extra Bytes VLR: LASF_Spec record 4) so that PDAL and QGIS show it by name.
+struct LasExtraBytes {
+  std::string name;         // up to 31 characters
+  std::string description;  // up to 31 characters
+  std::vector<float> values;
+};
+
 struct LasWriteOptions {
   int version_minor = 2;  // 2 or 4
   int point_format = 0;   // 0..10
@@ -69,6 +77,7 @@ struct LasWriteOptions {
   // global encoding's WKT bit in LAS 1.4; in LAS 1.2 as GeoTIFF keys (when the CRS has an EPSG code
   // below 32767) and as WKT.
   std::string crs_wkt;
+  std::vector<LasExtraBytes> extra;  // LAS 1.4 only; each with one value per point
 };
 
 // Writes `points` as an uncompressed LAS file (synthetic samples and tests), under a temporary

@@ -14,6 +14,7 @@
 // (a building's floor on the terrain) are closed. The count is odd: the last solid reaches down
 // without end (a bottom with nothing under it is dropped); where a texel has more surfaces than `max_layers`, the
 // deepest are dropped and the last kept top reaches down (counted in `truncated`).
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -58,6 +59,19 @@ class ZenithDepthMap {
   int count(int col, int row) const { return counts_[index(col, row)]; }
   const float* heights(int col, int row) const { return &values_[offsets_[index(col, row)]]; }
 
+  // Dynamic scenes (the paper's Figure 12 idea): makes again only the texels whose centre lies in
+  // the scene-local box [lo, hi] (x, y; widened by a texel each way) from `scene`, a changed
+  // version of the one the map was made from (an object added, moved or removed inside the box:
+  // for a move, the box holds both footprints). The result equals build(scene, rays, options) bit
+  // for bit. Returns the count of texels made again, or -1, leaving the map as it was, where the
+  // changed scene would give another map (its bounds move the grid or the rays' start, or the
+  // options differ, or the map was loaded from a file): then build it again. Parallel (oneTBB).
+  std::int64_t update_region(const Scene& scene, const RayScene& rays, const ZenithOptions& options,
+                             std::array<double, 2> lo, std::array<double, 2> hi);
+
+  // Every texel's heights and the map's frame equal (what update_region promises).
+  bool same_as(const ZenithDepthMap& other) const;
+
   // As a GeoTIFF in the scene's CRS: one float32 band per layer ("layer_1" the top, NaN where a
   // texel has fewer), world heights, with the options as metadata. `origin`: Scene::origin.
   void save(const std::string& path, const Scene& scene, const WriteOptions& options) const;
@@ -67,10 +81,15 @@ class ZenithDepthMap {
 
  private:
   std::size_t index(int col, int row) const { return static_cast<std::size_t>(row) * width_ + col; }
+  // The grid and the rays' start height a build of `rays`' scene uses, without texels.
+  static ZenithDepthMap frame_of(const RayScene& rays, const ZenithOptions& options);
 
   int width_ = 0, height_ = 0, max_layers_ = 0;
   double resolution_ = 1.0, x0_ = 0.0, y0_ = 0.0;
   std::int64_t truncated_ = 0;
+  float ray_top_ = 0;              // scene-local z the downward rays start from (NaN: loaded)
+  double merge_gap_ = 0;           // the options' (update_region checks them)
+  std::vector<std::uint8_t> cut_;  // per texel: 1 where truncated (empty when loaded)
   std::vector<std::uint8_t> counts_;
   std::vector<std::uint64_t> offsets_;  // into values_, one per texel
   std::vector<float> values_;
