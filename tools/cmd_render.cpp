@@ -94,7 +94,7 @@ int run(const CLI::App& app, Options& o) {
                                   o.sun.shadow_diff, o.points_out}) {
     if (!path.empty()) check_output_writable(path, o.out.overwrite);
   }
-  check_output_format(output, o.out.format, 15, o.out.creation_options);
+  check_output_format(output, o.out.format, static_cast<int>(names.size()), o.out.creation_options);
 
   ThreadLimit limit(o.out.threads);
   const Scene scene = load_scene_inputs(app, o.scene);
