@@ -86,7 +86,10 @@ ZenithDepthMap ZenithDepthMap::frame_of(const RayScene& rays, const ZenithOption
   }
   m.width_ = std::max(1, static_cast<int>(w));
   m.height_ = std::max(1, static_cast<int>(h));
-  m.ray_top_ = bounds[1][2] + 1.0f;
+  // The rays start above everything, at a height rounded up to whole 16 m so that a change below
+  // it (an object moved, added or removed, not the tallest by a margin) keeps every ray's start
+  // and update_region can stand in for a new build.
+  m.ray_top_ = 16.0f * std::ceil((bounds[1][2] + 1.0f) / 16.0f);
   m.merge_gap_ = o.merge_gap;
   return m;
 }

@@ -61,11 +61,12 @@ class ZenithDepthMap {
 
   // Dynamic scenes (the paper's Figure 12 idea): makes again only the texels whose centre lies in
   // the scene-local box [lo, hi] (x, y; widened by a texel each way) from `scene`, a changed
-  // version of the one the map was made from (an object added, moved or removed inside the box:
-  // for a move, the box holds both footprints). The result equals build(scene, rays, options) bit
-  // for bit. Returns the count of texels made again, or -1, leaving the map as it was, where the
-  // changed scene would give another map (its bounds move the grid or the rays' start, or the
-  // options differ, or the map was loaded from a file): then build it again. Parallel (oneTBB).
+  // version of the one the map was made from (an object added, moved or removed inside the box; for
+  // a move, one call per footprint or one box holding both). The result equals build(scene, rays,
+  // options) bit for bit. Returns the count of texels made again, or -1, leaving the map as it was,
+  // where the changed scene would give another map: its bounds move the grid, or its highest point
+  // crosses a multiple of 16 m (which moves the rays' start), or the options differ, or the map was
+  // loaded from a file. Then build it again. Parallel (oneTBB).
   std::int64_t update_region(const Scene& scene, const RayScene& rays, const ZenithOptions& options,
                              std::array<double, 2> lo, std::array<double, 2> hi);
 
