@@ -123,7 +123,13 @@ ZenithDepthMap ZenithDepthMap::build(const Scene& scene, const RayScene& rays, c
     std::vector<std::vector<float>>().swap(rows[row]);
   }
   m.values_.push_back(0.0f);  // heights() of an empty last texel stays in bounds
+  m.pack();
   return m;
+}
+
+void ZenithDepthMap::pack() {
+  packed_.resize(counts_.size());
+  for (std::size_t i = 0; i < counts_.size(); ++i) packed_[i] = {counts_[i] ? values_[offsets_[i]] : 0.0f, counts_[i]};
 }
 
 std::int64_t ZenithDepthMap::layered_texels() const {
@@ -210,6 +216,7 @@ ZenithDepthMap ZenithDepthMap::load(const std::string& path, const Scene& scene)
     m.counts_[i] = static_cast<std::uint8_t>(c);
   }
   m.values_.push_back(0.0f);
+  m.pack();
   return m;
 }
 
