@@ -60,6 +60,12 @@ ExposureReference exposure_reference(const RayScene& scene, const ViewBuffers& v
   const float nan = std::numeric_limits<float>::quiet_NaN();
   ExposureReference out{Grid<float>(v.width, v.height, nan), Grid<float>(v.width, v.height, nan)};
   const MapDistribution sky(map);
+  // Multi-sample MIS: half the rays by each strategy (all by the cosine for a dark map), each
+  // sample weighted f / (n_c p_c + n_m p_m). Each strategy's first number is stratified (one
+  // stratum per ray: the map's cumulative runs through the sun's track, so its strata spread the
+  // rays along it); the standard error from the samples' spread ignores the strata and so errs
+  // high.
+  const int by_map = sky.total > 0 ? rays / 2 : 0, by_cosine = rays - by_map;
   tbb::parallel_for(0, v.height, [&](int row) {
     for (int col = 0; col < v.width; ++col) {
       const std::size_t i = v.depth.index(col, row);
@@ -68,16 +74,16 @@ ExposureReference exposure_reference(const RayScene& scene, const ViewBuffers& v
       const Vec3f& n = hemisphere.normal();
       double sum = 0, sum2 = 0;
       for (int k = 0; k < rays; ++k) {
-        const bool by_cosine = sky.total <= 0 || hemisphere.uniform() < 0.5;
-        const double u0 = hemisphere.uniform(), u1 = hemisphere.uniform();
-        const Vec3f d = by_cosine ? hemisphere.cosine_direction(u0, u1) : sky.sample(u0, u1, hemisphere.uniform());
+        const bool cosine_ray = k < by_cosine;
+        const int stratum = cosine_ray ? k : k - by_cosine, strata = cosine_ray ? by_cosine : by_map;
+        const double u0 = (stratum + hemisphere.uniform()) / strata, u1 = hemisphere.uniform();
+        const Vec3f d = cosine_ray ? hemisphere.cosine_direction(u0, u1) : sky.sample(u0, u1, hemisphere.uniform());
         const double cosine = double(n[0]) * d[0] + double(n[1]) * d[1] + double(n[2]) * d[2];
         if (d[2] <= 0 || cosine <= 0) continue;  // below the horizon or behind the surface: f = 0
         const double radiance = sky.radiance(d);
         if (radiance <= 0 || scene.occluded(hemisphere.origin(), d)) continue;
-        const double density =
-            sky.total > 0 ? 0.5 * cosine / std::numbers::pi + 0.5 * radiance / sky.total : cosine / std::numbers::pi;
-        const double value = radiance * cosine / density;
+        const double density = by_cosine * cosine / std::numbers::pi + (by_map ? by_map * radiance / sky.total : 0.0);
+        const double value = rays * radiance * cosine / density;
         sum += value;
         sum2 += value * value;
       }

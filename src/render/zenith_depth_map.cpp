@@ -86,7 +86,10 @@ ZenithDepthMap ZenithDepthMap::frame_of(const RayScene& rays, const ZenithOption
   }
   m.width_ = std::max(1, static_cast<int>(w));
   m.height_ = std::max(1, static_cast<int>(h));
-  m.ray_top_ = bounds[1][2] + 1.0f;
+  // The rays start above everything, at a height rounded up to whole 16 m so that a change below
+  // it (an object moved, added or removed, not the tallest by a margin) keeps every ray's start
+  // and update_region can stand in for a new build.
+  m.ray_top_ = 16.0f * std::ceil((bounds[1][2] + 1.0f) / 16.0f);
   m.merge_gap_ = o.merge_gap;
   return m;
 }
@@ -120,7 +123,13 @@ ZenithDepthMap ZenithDepthMap::build(const Scene& scene, const RayScene& rays, c
     std::vector<std::vector<float>>().swap(rows[row]);
   }
   m.values_.push_back(0.0f);  // heights() of an empty last texel stays in bounds
+  m.pack();
   return m;
+}
+
+void ZenithDepthMap::pack() {
+  packed_.resize(counts_.size());
+  for (std::size_t i = 0; i < counts_.size(); ++i) packed_[i] = {counts_[i] ? values_[offsets_[i]] : 0.0f, counts_[i]};
 }
 
 std::int64_t ZenithDepthMap::layered_texels() const {
@@ -207,6 +216,7 @@ ZenithDepthMap ZenithDepthMap::load(const std::string& path, const Scene& scene)
     m.counts_[i] = static_cast<std::uint8_t>(c);
   }
   m.values_.push_back(0.0f);
+  m.pack();
   return m;
 }
 

@@ -58,6 +58,7 @@ std::int64_t ZenithDepthMap::update_region(const Scene& scene, const RayScene& r
   }
   values.push_back(0.0f);  // as build(): heights() of an empty last texel stays in bounds
   values_.swap(values);
+  pack();
   return std::int64_t(w) * h;
 }
 

@@ -68,7 +68,7 @@ TEST(RenderExposureReference, OpenPlaneGetsTheMapsHorizontalTotal) {
 
 // The floor of a north-south canyon (H = W = 10 m): the two-scale exposure band (16 × (16 + 16),
 // Eqs. 7–10) agrees with the exposure reference within 3 % plus four standard errors (measured: 705 against
-// 696 ± 24 kWh m-2 at 4096 rays; the open plane gets 2242), and both lie
+// 690 ± 12 kWh m-2 at 16384 rays; the open plane gets 2242), and both lie
 // far below the open plane's total.
 TEST(RenderExposureReference, CanyonFloorAgreesWithTheExposureBand) {
   const Scene s = canyon_scene(10, 10, 1000);

@@ -47,12 +47,12 @@ TEST(RenderZenithUpdate, MovedObjectEqualsAFullBuild) {
   const Scene before = street();
   ZenithDepthMap map = ZenithDepthMap::build(before, RayScene(before), options());
   Scene after = before;
-  after.meshes[after.meshes.size() - 2] = box_mesh("house", {-41.3f, 40.2f, 0}, {-30.1f, 51, 8});
+  after.meshes[after.meshes.size() - 2] = box_mesh("house", {-41.3f, 40.2f, 0}, {-30.1f, 51, 7.5f});
   const RayScene rays(after);
   const ZenithDepthMap full = ZenithDepthMap::build(after, rays, options());
   ASSERT_FALSE(map.same_as(full));
-  // Where it was and where it is: two regions (the house stays the tallest: a lower one would move
-  // the rays' start, and the update would be refused).
+  // Where it was and where it is: two regions. The tallest object is lower now, but the rays' start
+  // (rounded up to whole 16 m) stays.
   EXPECT_GT(map.update_region(after, rays, options(), {20, 20}, {30, 30}), 0);
   EXPECT_FALSE(map.same_as(full));
   EXPECT_GT(map.update_region(after, rays, options(), {-41.3, 40.2}, {-30.1, 51}), 0);

@@ -56,16 +56,20 @@ class ZenithDepthMap {
   int row_of(double y) const { return static_cast<int>(std::floor((y0_ - y) / resolution_)); }
   bool in_map(int col, int row) const { return col >= 0 && row >= 0 && col < width_ && row < height_; }
   // Heights of a texel from the top down (scene-local z); empty where the scene has nothing.
-  int count(int col, int row) const { return counts_[index(col, row)]; }
-  const float* heights(int col, int row) const { return &values_[offsets_[index(col, row)]]; }
+  int count(int col, int row) const { return packed_[index(col, row)].count; }
+  const float* heights(int col, int row) const {
+    const Packed& t = packed_[index(col, row)];
+    return t.count <= 1 ? &t.first : &values_[offsets_[index(col, row)]];
+  }
 
   // Dynamic scenes (the paper's Figure 12 idea): makes again only the texels whose centre lies in
   // the scene-local box [lo, hi] (x, y; widened by a texel each way) from `scene`, a changed
-  // version of the one the map was made from (an object added, moved or removed inside the box:
-  // for a move, the box holds both footprints). The result equals build(scene, rays, options) bit
-  // for bit. Returns the count of texels made again, or -1, leaving the map as it was, where the
-  // changed scene would give another map (its bounds move the grid or the rays' start, or the
-  // options differ, or the map was loaded from a file): then build it again. Parallel (oneTBB).
+  // version of the one the map was made from (an object added, moved or removed inside the box; for
+  // a move, one call per footprint or one box holding both). The result equals build(scene, rays,
+  // options) bit for bit. Returns the count of texels made again, or -1, leaving the map as it was,
+  // where the changed scene would give another map: its bounds move the grid, or its highest point
+  // crosses a multiple of 16 m (which moves the rays' start), or the options differ, or the map was
+  // loaded from a file. Then build it again. Parallel (oneTBB).
   std::int64_t update_region(const Scene& scene, const RayScene& rays, const ZenithOptions& options,
                              std::array<double, 2> lo, std::array<double, 2> hi);
 
@@ -92,6 +96,14 @@ class ZenithDepthMap {
   std::vector<std::uint8_t> cut_;  // per texel: 1 where truncated (empty when loaded)
   std::vector<std::uint8_t> counts_;
   std::vector<std::uint64_t> offsets_;  // into values_, one per texel
+  // What the large scale's march reads per texel, in one cache line: the count and the top height
+  // (a height field's whole texel); offsets_ only for layered texels. Made by pack().
+  struct Packed {
+    float first;
+    std::uint32_t count;
+  };
+  std::vector<Packed> packed_;
+  void pack();
   std::vector<float> values_;
 };
 
