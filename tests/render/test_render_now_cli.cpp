@@ -94,6 +94,29 @@ TEST(RenderNowCli, OpenPlaneGetsTheSkysDiffuseHorizontalIrradiance) {
   }
 }
 
+// The sky is brightest around the sun: at 08:00 (sun at about 115° azimuth) the box's east wall gets
+// more diffuse light than its west wall (the map's azimuths agree with the view's), and only the
+// east wall gets the beam.
+TEST(RenderNowCli, WallFacingTheSunsSideOfTheSkyGetsMoreDiffuseLight) {
+  const std::string dir = temp_dir("render-now");
+  const std::string obj = write_scene(dir, true);
+  float diffuse[2], direct[2];
+  for (int side = 0; side < 2; ++side) {
+    const std::string out = dir + (side ? "/west.tif" : "/east.tif");
+    const std::string x = side ? "-100" : "100";
+    const RunResult r = run_skyview("render " + obj + " " + out + " --camera " + x + ",0,10 --look-at 0,0,10" +
+                                        " --size 21x21 --fov 10 --zenith-res 1" + kSun,
+                                    dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    direct[side] = read_band(out, 5).values(10, 10);
+    diffuse[side] = read_band(out, 6).values(10, 10);
+  }
+  EXPECT_GT(direct[0], 300.0f);
+  EXPECT_EQ(direct[1], 0.0f);
+  EXPECT_GT(diffuse[0], 1.5f * diffuse[1]) << diffuse[0] << " east, " << diffuse[1] << " west";
+  EXPECT_GT(diffuse[1], 20.0f);
+}
+
 // With --skymap the visibility pass reads the period's map and a second pass with the same seed
 // reads the instant's: diffuse_now is the same as without --skymap, to the bit, and the box's
 // neighbourhood (where the regions matter) is in view.
