@@ -61,7 +61,7 @@ TilePlan plan_tiles(const TileRequest& request, const HorizonEngine& engine, int
         "the whole run needs about " + memory_text(plan.whole_estimate) + ", over " +
         (o.memory_limit.empty() ? "the " + memory_text(plan.limit) + " available" : "--memory-limit " + o.memory_limit);
   }
-  if (plan.tiled && !std::isfinite(engine.radius())) {
+  if (plan.tiled && !std::isfinite(engine.radius()) && !request.far_field) {
     throw UsageError("tiled runs need a finite --radius for now (" + plan.why +
                      "): give --radius in metres; each tile then reads a halo that wide");
   }
@@ -72,7 +72,8 @@ void choose_tile_size(TilePlan& plan, const TileRequest& request, const HorizonE
                       int width, int height) {
   plan.halo = halo_cells(frame, {0, 0, width, height}, engine.radius());
   if (plan.tile_size == 0) {
-    plan.tile_size = tile_size_for(request.memory(engine), plan.limit, plan.halo, std::max(width, height));
+    plan.tile_size = tile_size_for(request.memory(engine), plan.limit - std::min(plan.limit, plan.reserved), plan.halo,
+                                   std::max(width, height));
     if (plan.tile_size == 0) {
       throw Error((request.options.memory_limit.empty() ? "the " + memory_text(plan.limit) + " available"
                                                         : "--memory-limit " + request.options.memory_limit) +
