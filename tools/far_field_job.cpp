@@ -66,6 +66,7 @@ void prepare_far_field(HorizonJob& job, double max_error) {
   job.far_field = std::make_shared<FarField>(pyramid, s, centre, w, h);
   job.far_halo_m = halo;
   job.tiles.reserved = pyramid->bytes();
+  job.tiles.far_field = true;
   auto& m = job.metadata;
   m["FAR_FIELD"] = halo >= diagonal
                        ? "none: the bound asked needs a halo as wide as the raster's reach, which the "

@@ -77,8 +77,12 @@ void choose_tile_size(TilePlan& plan, const TileRequest& request, const HorizonE
     if (plan.tile_size == 0) {
       throw Error((request.options.memory_limit.empty() ? "the " + memory_text(plan.limit) + " available"
                                                         : "--memory-limit " + request.options.memory_limit) +
-                  " holds no tile with its halo of " + std::to_string(plan.halo) + " cells (--radius " +
-                  number_text(engine.radius()) + " m); allow more memory or give a smaller --radius");
+                  " holds no tile with its halo of " + std::to_string(plan.halo) + " cells" +
+                  (plan.far_field ? " (" + number_text(engine.radius()) +
+                                        " m, what the far field's bound asks for); allow more memory or give a larger "
+                                        "--far-field-error or a --radius"
+                                  : " (--radius " + number_text(engine.radius()) +
+                                        " m); allow more memory or give a smaller --radius"));
     }
   }
   plan.tiles = TileGrid(width, height, plan.tile_size).count();
