@@ -56,6 +56,9 @@ int run_tiled_svf(const HorizonJobOptions& o, const TilingOptions& tiling, const
                     std::to_string(job.tiles.tiles) + " tiles of " + std::to_string(job.tiles.tile_size) +
                     " cells (halo " + std::to_string(job.tiles.halo) +
                     (job.tiles.skipped > 0 ? ", " + std::to_string(job.tiles.skipped) + " already finished" : "") +
+                    (job.far_field ? ", far field beyond " + number_text(job.far_halo_m) + " m, svf bound " +
+                                         job.metadata.at("FAR_FIELD_BOUND_SVF")
+                                   : "") +
                     "); " + total.first_band.text(total.first_band_name),
                 o.out.quiet);
   return 0;
@@ -84,6 +87,11 @@ Runner setup(CLI::App& app) {
             }
           },
           "LIST"));
+  app.add_option("--far-field-error", tiling->far_error,
+                 "Tiled runs without --radius: the largest svf error the far field beyond each tile's halo may cause "
+                 "(a proven bound, docs/tiling.md); the halo is made as wide as it needs (default: --max-error, "
+                 "else 0.01)")
+      ->check(number_above(0.0, 1.0));
   app.add_option("--check-cells", *check_cells,
                  "Measure the svf's error on this many random cells against exact horizons and record it in the "
                  "metadata (SVF_CHECK_*); with --max-error (default 1000 cells) a run whose measured p99 exceeds the "
@@ -110,6 +118,7 @@ Runner setup(CLI::App& app) {
     ProductSet keep = ProductSet::none();
     for (const SvfProductInfo* c : parse_svf_products(*products)) keep.add(c->product);
     const int n_products = static_cast<int>(parse_svf_products(*products).size());
+    tiling->far_field = true;
     tiling->memory = [keep, n_products](const HorizonEngine& engine) {
       return svf_memory(engine, keep, n_products + (engine.name() == "raycast" && engine.params().rays > 0 ? 2 : 0));
     };
@@ -122,12 +131,20 @@ Runner setup(CLI::App& app) {
     const int n_bands = n_products + (monte_carlo ? 2 : 0);
     if (tiling->options.tiles_dir.empty())
       check_output_format(o->output, o->out.format, n_bands, o->out.creation_options);
+    if (app.count("--far-field-error") > 0 && !job.far_field)
+      throw UsageError(
+          "--far-field-error applies to tiled runs without --radius (the far field beyond each tile's halo)");
     if (job.tiles.tiled) {
       // What needs the whole raster at once: the check's random cells (and --max-error's reruns on
       // them), the preview picture.
       const std::string tiled = "the run goes by tiles (" + job.tiles.why + ")";
-      if (o->max_error >= 0) throw UsageError("--max-error is not available when " + tiled + " yet");
+      // --max-error chooses the method by its calibration and, at unlimited radius, the halo by the
+      // far field's bound; the check of random cells needs the whole raster.
+      if (o->max_error >= 0 && !job.far_field)
+        throw UsageError("--max-error is not available when " + tiled + " with a finite radius yet");
       if (*check_cells > 0) throw UsageError("--check-cells is not available when " + tiled + " yet");
+      request.check_cells = 0;
+      request.far_field = job.far_field;
       if (!preview->path.empty()) throw UsageError("--preview needs the whole raster, and " + tiled);
       return run_tiled_svf(*o, tiling->options, request, job, n_bands, summary);
     }

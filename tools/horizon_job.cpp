@@ -1,4 +1,5 @@
 #include "horizon_job.h"
+#include "far_field_job.h"
 #include "tile_ranks.h"
 
 #include <cmath>
@@ -147,6 +148,8 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   if (job.tiles.tiled) {
     job.reader = std::make_shared<TerrainReader>(o.input, ro, &report);
     const int w = job.reader->width(), h = job.reader->height();
+    if (!std::isfinite(job.engine->radius()))
+      prepare_far_field(job, tiling->far_error >= 0 ? tiling->far_error : o.max_error);
     choose_tile_size(job.tiles, *tiling, *job.engine, job.reader->frame(), w, h);
     // The checks that need the raster look at its centre: a window there as wide as a tile's halo
     // (the cell farthest from every edge is the centre's).
@@ -168,6 +171,9 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   m["Z_SCALE"] = number_text(report.z_scale);
   m["HEIGHT_UNIT"] = report.height_unit;
   fit_horizon(job, request, job.terrain);
+  if (job.far_field) {
+    m["RADIUS_M"] = "unlimited (exact within the halo of FAR_FIELD_HALO_M, the far field beyond)";
+  }
   for (const std::string& w : job.warnings) std::fprintf(stderr, "Warning: %s ('%s')\n", w.c_str(), o.input.c_str());
   job.warnings.clear();
   return job;

@@ -48,6 +48,9 @@ struct HorizonJob : HorizonSetup {
   bool quiet = false;
   TilePlan tiles;
   std::shared_ptr<TerrainReader> reader;
+  // A tiled run at unlimited radius: the horizons beyond the halo (far_field_job.h), and its width.
+  std::shared_ptr<const FarHorizons> far_field;
+  double far_halo_m = 0;
   // The raster's size, whole or tiled.
   int width() const { return reader ? reader->width() : terrain.width(); }
   int height() const { return reader ? reader->height() : terrain.height(); }

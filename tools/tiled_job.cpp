@@ -61,7 +61,7 @@ TilePlan plan_tiles(const TileRequest& request, const HorizonEngine& engine, int
         "the whole run needs about " + memory_text(plan.whole_estimate) + ", over " +
         (o.memory_limit.empty() ? "the " + memory_text(plan.limit) + " available" : "--memory-limit " + o.memory_limit);
   }
-  if (plan.tiled && !std::isfinite(engine.radius())) {
+  if (plan.tiled && !std::isfinite(engine.radius()) && !request.far_field) {
     throw UsageError("tiled runs need a finite --radius for now (" + plan.why +
                      "): give --radius in metres; each tile then reads a halo that wide");
   }
@@ -72,12 +72,17 @@ void choose_tile_size(TilePlan& plan, const TileRequest& request, const HorizonE
                       int width, int height) {
   plan.halo = halo_cells(frame, {0, 0, width, height}, engine.radius());
   if (plan.tile_size == 0) {
-    plan.tile_size = tile_size_for(request.memory(engine), plan.limit, plan.halo, std::max(width, height));
+    plan.tile_size = tile_size_for(request.memory(engine), plan.limit - std::min(plan.limit, plan.reserved), plan.halo,
+                                   std::max(width, height));
     if (plan.tile_size == 0) {
       throw Error((request.options.memory_limit.empty() ? "the " + memory_text(plan.limit) + " available"
                                                         : "--memory-limit " + request.options.memory_limit) +
-                  " holds no tile with its halo of " + std::to_string(plan.halo) + " cells (--radius " +
-                  number_text(engine.radius()) + " m); allow more memory or give a smaller --radius");
+                  " holds no tile with its halo of " + std::to_string(plan.halo) + " cells" +
+                  (plan.far_field ? " (" + number_text(engine.radius()) +
+                                        " m, what the far field's bound asks for); allow more memory or give a larger "
+                                        "--far-field-error or a --radius"
+                                  : " (--radius " + number_text(engine.radius()) +
+                                        " m); allow more memory or give a smaller --radius"));
     }
   }
   plan.tiles = TileGrid(width, height, plan.tile_size).count();

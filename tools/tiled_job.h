@@ -33,6 +33,10 @@ void add_tiling_options(CLI::App& app, TilingOptions& o);
 struct TileRequest {
   TilingOptions options;
   std::function<MemoryModel(const HorizonEngine&)> memory;
+  // The command computes the far field beyond the halo (far_field_job.h), so tiles need no finite
+  // --radius.
+  bool far_field = false;
+  double far_error = -1;  // --far-field-error: the far field's svf bound; < 0: --max-error's, or the default
 };
 
 // How a run goes: whole, or by tiles of `tile_size` cells read with `halo` cells around them.
@@ -41,6 +45,8 @@ struct TilePlan {
   int tile_size = 0, halo = 0, tiles = 0;
   int skipped = 0;                   // tiles a --tiles-dir rerun found finished
   std::uint64_t limit = 0;           // bytes (--memory-limit, or what was available)
+  bool far_field = false;            // the halo is the far field's (far_field_job.h), not --radius
+  std::uint64_t reserved = 0;        // bytes of the limit held for the whole run (the far field's pyramid)
   std::uint64_t whole_estimate = 0;  // bytes the whole run would take by the memory model
   std::string why;                   // "--tile-size 64", "the whole run needs about ... over ..."
 };

@@ -2,6 +2,7 @@
 // per cell and direction (8 with the lowest angles that openness_negative needs), 2 GB for 64 directions
 // over 2000 x 2000 cells, where the products themselves are 20 bytes per cell.
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "skyview/sky_view/sky_view.h"
@@ -14,14 +15,23 @@ void copy_rows(const Grid<float>& from, Grid<float>& to, int r0) {
   std::memcpy(to.data() + to.index(0, r0), from.data(), sizeof(float) * from.size());
 }
 
+// Every direction of `field` (over `window`) raised by the far field, if any.
+void raise_all(const FarHorizons* far, const Terrain& terrain, const Window& window, HorizonField& field) {
+  if (!far) return;
+  for (int k = 0; k < field.directions; ++k) far->raise(terrain, window, field, k, field.upper_plane(k));
+}
+
 // Methods that find all of a cell's directions together go by blocks of whole rows, each turned
 // into products before the next (compute_by_row_blocks).
 SkyViewProducts by_row_blocks(const HorizonEngine& engine, const Terrain& terrain, const Window& window, EdgeMode edge,
-                              ProgressCounter& progress, std::size_t horizon_bytes, ProductSet keep) {
+                              ProgressCounter& progress, std::size_t horizon_bytes, ProductSet keep,
+                              const FarHorizons* far) {
   SkyViewProducts out;
+  const double radius = far ? INFINITY : engine.radius();
   compute_by_row_blocks(
       engine, terrain, window, progress, horizon_bytes, 1, [&](const Window& block, HorizonField& field) {
-        SkyViewProducts part = sky_view_products(terrain, block, field, engine.radius(), edge);
+        raise_all(far, terrain, block, field);
+        SkyViewProducts part = sky_view_products(terrain, block, field, radius, edge);
         if (block.rows == window.rows) {  // one block: nothing to copy
           out = std::move(part);
           if (!field.svf_direct.empty()) {
@@ -52,9 +62,12 @@ SkyViewProducts by_row_blocks(const HorizonEngine& engine, const Terrain& terrai
 }  // namespace
 
 SkyViewProducts compute_sky_view(const HorizonEngine& engine, const Terrain& terrain, const Window& window,
-                                 EdgeMode edge, ProgressCounter& progress, std::size_t horizon_bytes, ProductSet keep) {
+                                 EdgeMode edge, ProgressCounter& progress, std::size_t horizon_bytes, ProductSet keep,
+                                 const FarHorizons* far) {
   const int n = engine.params().directions;
-  if (!engine.streams_directions()) return by_row_blocks(engine, terrain, window, edge, progress, horizon_bytes, keep);
+  if (!engine.streams_directions())
+    return by_row_blocks(engine, terrain, window, edge, progress, horizon_bytes, keep, far);
+  const double radius = far ? INFINITY : engine.radius();
   // A sweep walks the whole buffer for every direction whatever the window, so it never goes by
   // blocks. Its directions cost 4 bytes per cell each (8 with the lowest angles); once that is
   // twice the running sums (16 directions for all five products), they are summed as they arrive,
@@ -63,14 +76,22 @@ SkyViewProducts compute_sky_view(const HorizonEngine& engine, const Terrain& ter
   const double direction_bytes = engine.params().lower ? 8.0 : 4.0;
   if (direction_bytes * n < 2.0 * SkyViewSums::bytes_per_cell(keep)) {
     engine.compute(terrain, window, field, progress);
-    return sky_view_products(terrain, window, field, engine.radius(), edge);
+    raise_all(far, terrain, window, field);
+    return sky_view_products(terrain, window, field, radius, edge);
   }
   SkyViewSums sums(terrain, window, n, keep);
+  std::vector<float> raised;  // a batch's planes raised by the far field
   const DirectionBatchSink take = [&](int first, int count, const float* upper, const float* lower) {
+    if (far) {
+      const std::size_t cells = static_cast<std::size_t>(window.cols) * window.rows;
+      raised.assign(upper, upper + cells * count);
+      for (int k = 0; k < count; ++k) far->raise(terrain, window, field, first + k, raised.data() + cells * k);
+      upper = raised.data();
+    }
     sums.add(first, count, upper, lower, field);
   };
   engine.compute_directions(terrain, window, field, progress, take);
-  return sums.finish(engine.radius(), edge);
+  return sums.finish(radius, edge);
 }
 
 }  // namespace skyview

@@ -166,7 +166,8 @@ SvfResult run_svf(const Terrain& terrain, const SvfRequest& request, HorizonSetu
   auto& m = setup.metadata;
   for (;;) {
     run([&](ProgressCounter& progress) {
-      p = compute_sky_view(*setup.engine, terrain, window, setup.edge, progress, kHorizonBlockBytes, keep);
+      p = compute_sky_view(*setup.engine, terrain, window, setup.edge, progress, kHorizonBlockBytes, keep,
+                           request.far_field.get());
     });
     if (n_check == 0) break;
     const SvfCheckOptions co = check_options(setup, terrain, n_check);

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+
+#include <tbb/global_control.h>
 #include <string>
 
 #include <tbb/task_arena.h>
@@ -82,8 +84,25 @@ std::uint64_t available_memory_bytes() {
     if (pages > 0 && page > 0) available = static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page);
   }
   rlimit limit{};
-  if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
-    available = available == 0 ? limit.rlim_cur : std::min<std::uint64_t>(available, limit.rlim_cur);
+  if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {
+    // ulimit -v caps the address space, of which the program and its libraries already hold some.
+    std::uint64_t mapped = 0;
+    std::ifstream status("/proc/self/status");
+    for (std::string key; status >> key;) {
+      if (key == "VmSize:") {
+        status >> mapped;
+        mapped *= 1024;
+        break;
+      }
+      status.ignore(256, '\n');
+    }
+    // The memory model counts the program itself (kProgramBytes) as part of a run's need.
+    // Each worker thread reserves address space besides: glibc's malloc arena (64 MiB) and its stack.
+    const std::uint64_t threads = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+    const std::uint64_t taken = mapped + threads * (std::uint64_t{72} << 20);
+    const std::uint64_t left = limit.rlim_cur + kProgramBytes > taken ? limit.rlim_cur + kProgramBytes - taken : 1;
+    available = available == 0 ? left : std::min<std::uint64_t>(available, left);
+  }
   return available;
 }
 

@@ -115,6 +115,18 @@ class SkyViewSums {
 SkyViewProducts sky_view_products(const Terrain& terrain, const Window& window, const HorizonField& field,
                                   double radius, EdgeMode edge);
 
+// Horizons from beyond a method's radius (a tiled run's far field, docs/tiling.md): raises the
+// upper angles of direction k of `window`'s cells in place. Products raised by it count every
+// cell's search as unlimited (the radius is the far field's).
+class FarHorizons {
+ public:
+  virtual ~FarHorizons() = default;
+  // `upper` is direction k's plane over `window` (row-major, window-sized); `field` gives the
+  // sectors' azimuths (HorizonField::azimuth).
+  virtual void raise(const Terrain& terrain, const Window& window, const HorizonField& field, int k,
+                     float* upper) const = 0;
+};
+
 // The products of `window`'s cells straight from a method, so that memory does not grow with the
 // number of directions: a method that finds one direction at a time (the sweep) hands them over as
 // they are done, summed by SkyViewSums once its whole field would take twice what the sums take;
@@ -123,6 +135,7 @@ SkyViewProducts sky_view_products(const Terrain& terrain, const Window& window, 
 // the others' grids may be empty. Progress advances by the window's cells.
 SkyViewProducts compute_sky_view(const HorizonEngine& engine, const Terrain& terrain, const Window& window,
                                  EdgeMode edge, ProgressCounter& progress,
-                                 std::size_t horizon_bytes = kHorizonBlockBytes, ProductSet keep = ProductSet::all());
+                                 std::size_t horizon_bytes = kHorizonBlockBytes, ProductSet keep = ProductSet::all(),
+                                 const FarHorizons* far = nullptr);
 
 }  // namespace skyview

@@ -4,11 +4,13 @@
 // the Python module and tiled runs call this one function.
 #include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "skyview/core/progress.h"
 #include "skyview/sky_view/horizon_request.h"
+#include "skyview/sky_view/sky_view.h"
 
 namespace skyview {
 
@@ -36,6 +38,8 @@ struct SvfRequest {
   std::string products = default_svf_products();
   // Cells to measure the svf's error on (SVF_CHECK_*); -1: 1000 with --max-error, else none.
   int check_cells = -1;
+  // Horizons beyond the method's radius (a tiled run's far field, docs/tiling.md); null: none.
+  std::shared_ptr<const FarHorizons> far_field;
 };
 
 struct SvfBand {

@@ -1,0 +1,219 @@
+#include "skyview/tiling/far_field.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <tbb/parallel_for.h>
+
+namespace skyview {
+
+namespace {
+
+// Rows of the raster read at a time while the pyramid is built: about 64 MB of the reader's
+// buffers (13 bytes a cell), whole cells of the first level.
+int strip_rows(int width, int block) {
+  const int rows = std::max(1, static_cast<int>((std::int64_t{64} << 20) / (13 * std::int64_t{std::max(1, width)})));
+  return std::max(block, rows / block * block);
+}
+
+int cells_at(int n, int level) { return static_cast<int>((static_cast<std::int64_t>(n) + (1 << level) - 1) >> level); }
+
+}  // namespace
+
+OverviewPyramid::OverviewPyramid(const TerrainReader& reader, int first_level)
+    : first_(std::max(1, first_level)), width_(reader.width()), height_(reader.height()) {
+  std::vector<Grid<float>> minima;
+  const int step = strip_rows(width_, 1 << first_);
+  for (int row0 = 0; row0 < height_; row0 += step) {
+    const int rows = std::min(step, height_ - row0);
+    const Terrain strip = reader.read({0, row0, width_, rows});
+    add_rows(strip.heights, row0, rows, minima);
+  }
+  build_levels(minima);
+}
+
+OverviewPyramid::OverviewPyramid(const Terrain& terrain, int first_level)
+    : first_(std::max(1, first_level)), width_(terrain.width()), height_(terrain.height()) {
+  std::vector<Grid<float>> minima;
+  add_rows(terrain.heights, 0, height_, minima);
+  build_levels(minima);
+}
+
+// Each raster cell raises the maximum (and lowers the minimum) of every first-level cell whose
+// block, grown by one raster cell on each side, holds it: the surface between cell centres
+// (the mesh every method reads) within a block is then bounded by the block's extremes.
+void OverviewPyramid::add_rows(const Grid<float>& heights, int row0, int rows, std::vector<Grid<float>>& minima) {
+  const int b = 1 << first_;
+  const int w = cells_at(width_, first_), h = cells_at(height_, first_);
+  if (max_.empty()) {
+    max_.emplace_back(w, h, NAN);
+    minima.emplace_back(w, h, NAN);
+  }
+  Grid<float>& hi = max_.front();
+  Grid<float>& lo = minima.front();
+  // The blocks whose grown extent holds cell n: k - 1 where n is a block's first cell, k + 1
+  // where it is its last.
+  auto blocks = [b](int n, int cells, int& first, int& last) {
+    const int k = n / b, m = n % b;
+    first = std::max(0, m == 0 ? k - 1 : k);
+    last = std::min(cells - 1, m == b - 1 ? k + 1 : k);
+  };
+  for (int r = 0; r < rows; ++r) {
+    int j0, j1;
+    blocks(row0 + r, h, j0, j1);
+    for (int c = 0; c < width_; ++c) {
+      const float z = heights(c, r);
+      if (std::isnan(z)) continue;
+      lo_ = std::min(lo_, static_cast<double>(z));
+      hi_ = std::max(hi_, static_cast<double>(z));
+      int i0, i1;
+      blocks(c, w, i0, i1);
+      for (int j = j0; j <= j1; ++j) {
+        for (int i = i0; i <= i1; ++i) {
+          float& up = hi(i, j);
+          float& down = lo(i, j);
+          if (std::isnan(up) || z > up) up = z;
+          if (std::isnan(down) || z < down) down = z;
+        }
+      }
+    }
+  }
+}
+
+void OverviewPyramid::build_levels(std::vector<Grid<float>>& minima) {
+  auto relief_of = [](const Grid<float>& hi, const Grid<float>& lo) {
+    double r = 0;
+    for (std::size_t i = 0; i < hi.size(); ++i) {
+      if (!std::isnan(hi.data()[i])) r = std::max(r, static_cast<double>(hi.data()[i] - lo.data()[i]));
+    }
+    return r;
+  };
+  relief_.push_back(relief_of(max_.back(), minima.back()));
+  while (max_.back().width() > 1 || max_.back().height() > 1) {
+    const Grid<float>& hi = max_.back();
+    const Grid<float>& lo = minima.back();
+    const int w = (hi.width() + 1) / 2, h = (hi.height() + 1) / 2;
+    Grid<float> up(w, h, NAN), down(w, h, NAN);
+    for (int j = 0; j < h; ++j) {
+      for (int i = 0; i < w; ++i) {
+        for (int dj = 0; dj < 2; ++dj) {
+          for (int di = 0; di < 2; ++di) {
+            const int c = 2 * i + di, r = 2 * j + dj;
+            if (c >= hi.width() || r >= hi.height() || std::isnan(hi(c, r))) continue;
+            if (std::isnan(up(i, j)) || hi(c, r) > up(i, j)) up(i, j) = hi(c, r);
+            if (std::isnan(down(i, j)) || lo(c, r) < down(i, j)) down(i, j) = lo(c, r);
+          }
+        }
+      }
+    }
+    relief_.push_back(relief_of(up, down));
+    max_.push_back(std::move(up));
+    minima.push_back(std::move(down));
+  }
+}
+
+std::uint64_t OverviewPyramid::bytes() const {
+  std::uint64_t n = 0;
+  for (const Grid<float>& g : max_) n += g.size() * sizeof(float);
+  return n;
+}
+
+namespace {
+
+// Where level l's march begins: K 2^l cell sides, or the halo for the first level.
+double level_start(const FarFieldSettings& s, int level, int first) {
+  return level == first ? s.halo_m : s.cells_per_level * std::ldexp(s.cell_m, level);
+}
+
+}  // namespace
+
+int far_field_first_level(const FarFieldSettings& s, int pyramid_first) {
+  int l = std::max(1, pyramid_first);
+  while (s.cells_per_level * std::ldexp(s.cell_m, l + 1) <= s.halo_m) ++l;
+  return l;
+}
+
+FarFieldBound far_field_bound(const OverviewPyramid& pyramid, const FarFieldSettings& s, double raster_diagonal_m) {
+  FarFieldBound b;
+  if (!(pyramid.highest() > pyramid.lowest())) return b;  // flat: nothing beyond the halo rises
+  // No terrain beyond H rises above atan(t) (heights within the raster's range, drop >= 0).
+  const double t = (pyramid.highest() - pyramid.lowest()) / s.halo_m;
+  const double crude = std::atan(t);
+  // A far angle read from level l at entry distance d (>= the level's start) differs from the
+  // exact one along the same ray by at most (relief + c (2 d l + l^2) + l t) / d, l the block's
+  // diagonal (docs/tiling.md).
+  double refined = 0;
+  const int first = far_field_first_level(s, pyramid.first_level());
+  for (int l = first; l <= pyramid.last_level(); ++l) {
+    const double d = level_start(s, l, first);
+    if (d >= raster_diagonal_m) break;
+    const double diag = std::ldexp(s.diagonal_m, l);
+    refined = std::max(refined, (pyramid.relief(l) + s.curvature * (2 * d * diag + diag * diag) + diag * t) / d);
+  }
+  b.angle = std::min(crude, refined);
+  // Both horizons lie in [0, atan t] where they differ in these bands (max(h, 0)): the sine
+  // squared moves by at most sin(2 h) dh there, the sine by at most dh.
+  b.svf = std::min(std::sin(crude) * std::sin(crude), std::sin(std::min(2 * crude, M_PI / 2)) * b.angle);
+  b.sky_visibility = std::min(std::sin(crude), b.angle);
+  return b;
+}
+
+FarField::FarField(std::shared_ptr<const OverviewPyramid> pyramid, const FarFieldSettings& s, const Jacobian& centre,
+                   int raster_width, int raster_height)
+    : pyramid_(std::move(pyramid)), s_(s), centre_(centre), width_(raster_width), height_(raster_height) {}
+
+double FarField::far_tangent(double x0, double y0, double z0, double azimuth) const {
+  double ux = 0, uy = 0;  // pixels per metre along the ray
+  centre_.pixel_step_for_azimuth(azimuth, ux, uy);
+  const OverviewPyramid& p = *pyramid_;
+  double best = -std::numeric_limits<double>::infinity();
+  const double c = s_.curvature;
+  const int first = far_field_first_level(s_, p.first_level());
+  for (int l = first; l <= p.last_level(); ++l) {
+    const Grid<float>& g = p.level(l);
+    const double size = std::ldexp(1.0, l);  // raster cells per level cell
+    const double t_a = level_start(s_, l, first);
+    const double t_b = l == p.last_level() ? INFINITY : level_start(s_, l + 1, first);
+    // An exact walk over the level's cells the ray crosses in [t_a, t_b) (Amanatides and Woo).
+    const double px = (x0 + ux * t_a) / size, py = (y0 + uy * t_a) / size;
+    int i = static_cast<int>(std::floor(px)), j = static_cast<int>(std::floor(py));
+    const int si = ux > 0 ? 1 : (ux < 0 ? -1 : 0), sj = uy > 0 ? 1 : (uy < 0 ? -1 : 0);
+    const double dx = si != 0 ? size / std::abs(ux) : INFINITY, dy = sj != 0 ? size / std::abs(uy) : INFINITY;
+    double next_x = si > 0 ? t_a + (i + 1 - px) * dx : (si < 0 ? t_a + (px - i) * dx : INFINITY);
+    double next_y = sj > 0 ? t_a + (j + 1 - py) * dy : (sj < 0 ? t_a + (py - j) * dy : INFINITY);
+    double t = t_a;
+    while (t < t_b) {
+      // Left the raster: no way back along a straight ray.
+      if ((i < 0 && si <= 0) || (j < 0 && sj <= 0) || (i >= g.width() && si >= 0) || (j >= g.height() && sj >= 0))
+        return best;
+      if (i >= 0 && j >= 0 && i < g.width() && j < g.height()) {
+        const float z = g(i, j);
+        if (!std::isnan(z)) best = std::max(best, (z - z0 - c * t * t) / t);
+      }
+      if (next_x < next_y) {
+        t = next_x, next_x += dx, i += si;
+      } else {
+        t = next_y, next_y += dy, j += sj;
+      }
+    }
+  }
+  return best;
+}
+
+void FarField::raise(const Terrain& terrain, const Window& window, const HorizonField& field, int k,
+                     float* upper) const {
+  tbb::parallel_for(0, window.rows, [&](int wr) {
+    for (int wc = 0; wc < window.cols; ++wc) {
+      const std::size_t cell = static_cast<std::size_t>(wr) * window.cols + wc;
+      float& h = upper[cell];
+      if (std::isnan(h)) continue;
+      const int col = window.col0 + wc, row = window.row0 + wr;
+      const double tangent = far_tangent(col + terrain.origin_col + 0.5, row + terrain.origin_row + 0.5,
+                                         terrain.heights(col, row), field.azimuth(cell, k));
+      if (tangent > -INFINITY) h = std::max(h, static_cast<float>(std::atan(tangent)));
+    }
+  });
+}
+
+}  // namespace skyview

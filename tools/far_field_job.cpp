@@ -1,0 +1,89 @@
+#include "far_field_job.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "horizon_job.h"
+#include "skyview/core/number_text.h"
+#include "skyview/tiling/far_field.h"
+
+namespace skyview::cli {
+
+namespace {
+
+// Memory the pyramid may take: an eighth of the run's limit, at least 64 MiB.
+std::uint64_t pyramid_budget(const TilePlan& plan) {
+  return std::max<std::uint64_t>(std::uint64_t{64} << 20, plan.limit / 8);
+}
+
+// The finest first level whose pyramid (maxima and, while it is built, minima: 8 bytes a cell,
+// 4/3 of the first level's cells in all) fits the budget.
+int pyramid_first_level(int width, int height, std::uint64_t budget) {
+  int l = 1;
+  while (l < 30 && 8.0 * 4 / 3 * std::ceil(width / std::ldexp(1.0, l)) * std::ceil(height / std::ldexp(1.0, l)) >
+                       static_cast<double>(budget))
+    ++l;
+  return l;
+}
+
+}  // namespace
+
+void prepare_far_field(HorizonJob& job, double max_error) {
+  const TerrainReader& reader = *job.reader;
+  const int w = reader.width(), h = reader.height();
+  const Jacobian centre = reader.frame().at(w / 2.0, h / 2.0);
+  const double diagonal = centre.metres(w, h);  // the whole raster's reach
+  // Curvature as the whole run resolves it (auto: on the raster's reach, not the halo's).
+  HorizonParams whole = job.engine->params();
+  whole.radius = diagonal;
+  const double curvature =
+      make_horizon_engine(job.engine->name(), whole)->curvature_coefficient(reader.read({w / 2, h / 2, 1, 1}));
+  FarFieldSettings s;
+  s.cell_m = centre.min_cell_size();
+  s.diagonal_m = std::max(centre.metres(1, 1), centre.metres(1, -1));
+  s.curvature = curvature;
+  auto pyramid = std::make_shared<OverviewPyramid>(reader, pyramid_first_level(w, h, pyramid_budget(job.tiles)));
+  // The smallest halo (in steps of 10%) whose bound meets the error asked; the whole raster's
+  // reach where none does (then no far field is left).
+  const double error = max_error >= 0 ? max_error : kDefaultFarFieldError;
+  double halo = std::max(2 * s.cells_per_level * std::ldexp(s.cell_m, pyramid->first_level()), 4 * s.diagonal_m);
+  FarFieldBound bound;
+  for (;; halo *= 1.1) {
+    if (halo >= diagonal) {
+      halo = diagonal;
+      break;
+    }
+    s.halo_m = halo;
+    bound = far_field_bound(*pyramid, s, diagonal);
+    if (bound.svf <= error) break;
+  }
+  s.halo_m = halo;
+  if (halo >= diagonal) bound = FarFieldBound{};
+  HorizonParams near = job.engine->params();
+  near.radius = halo;
+  near.curvature = curvature > 0 ? "on" : "off";
+  job.engine = make_horizon_engine(job.engine->name(), near);
+  job.far_field = std::make_shared<FarField>(pyramid, s, centre, w, h);
+  job.far_halo_m = halo;
+  job.tiles.reserved = pyramid->bytes();
+  job.tiles.far_field = true;
+  auto& m = job.metadata;
+  m["FAR_FIELD"] = halo >= diagonal
+                       ? "none: the bound asked needs a halo as wide as the raster's reach, which the "
+                         "tiles then hold whole (exact)"
+                       : "beyond the halo of " + number_text(halo) +
+                             " m: a march over a max-pooled overview pyramid of the whole raster (levels " +
+                             std::to_string(far_field_first_level(s, pyramid->first_level())) + " to " +
+                             std::to_string(pyramid->last_level()) +
+                             ", each level's cells K = " + std::to_string(s.cells_per_level) +
+                             " times finer than the distance it is read at); " +
+                             "horizons are the higher of the near and far angles per direction";
+  m["FAR_FIELD_HALO_M"] = number_text(halo);
+  m["FAR_FIELD_BOUND_SVF"] = number_text(bound.svf);
+  m["FAR_FIELD_BOUND_SKY_VISIBILITY"] = number_text(bound.sky_visibility);
+  m["FAR_FIELD_BOUND_ANGLE_DEG"] = number_text(bound.angle * 180 / M_PI);
+  m["FAR_FIELD_ERROR_ASKED"] = number_text(error) + (max_error >= 0 ? " (asked)" : " (default)");
+  m["FAR_FIELD_PYRAMID_BYTES"] = std::to_string(pyramid->bytes());
+}
+
+}  // namespace skyview::cli
