@@ -27,6 +27,7 @@
 #include "height_sampler.h"
 #include "skyview/horizon/horizon_engine.h"
 #include "skyview/horizon/point_horizons.h"
+#include "track_box.h"
 
 namespace skyview::detail {
 
@@ -101,7 +102,7 @@ class RayScanner {
  public:
   // `field`: whose sectors (HorizonField::sector_rotation and sectors) to scan.
   RayScanner(const Terrain& terrain, const ScanSettings& s, const Placement& placement, const HorizonField& field)
-      : terrain_(terrain), s_(s), placement_(placement), sampler_(terrain) {
+      : terrain_(terrain), s_(s), placement_(placement), sampler_(terrain), box_(track_box(terrain)) {
     for (float z : terrain.heights.values()) {
       if (!std::isnan(z)) {
         zmax_ = std::max<double>(zmax_, z);
@@ -148,7 +149,7 @@ class RayScanner {
     const bool early = s.early_exit;
     constexpr double kInf = std::numeric_limits<double>::infinity();
     constexpr double kTieMargin = 1e-6;  // metres
-    const double last_col = terrain.width() - 1, last_row = terrain.height() - 1;
+    const TrackBox& box = box_;
     const double col = eye_col, row = eye_row;
     const double above = std::max(0.0, zmax_ - z0);  // an observer may stand above every cell
     const double below = std::min(0.0, zmin_ - z0);
@@ -167,60 +168,60 @@ class RayScanner {
       if (std::abs(pr) < 1e-12 * std::abs(pc)) pr = 0.0;
       double max_t = -std::numeric_limits<double>::infinity();
       double min_t = std::numeric_limits<double>::infinity();
-      // Distance at which the ray leaves the buffer, so samples need no bounds check.
-      const double exit_c = pc > 0 ? (last_col - col) / pc : (pc < 0 ? -col / pc : kInf);
-      const double exit_r = pr > 0 ? (last_row - row) / pr : (pr < 0 ? -row / pr : kInf);
+      // Distance at which the track leaves the raster's extent (track_box.h), so samples need no
+      // bounds check.
+      const double exit = box.exit(col, row, pc, pr);
       const double inv_pc = pc != 0.0 ? 1.0 / pc : 0.0, inv_pr = pr != 0.0 ? 1.0 / pr : 0.0;
       std::size_t judged[2] = {SIZE_MAX, SIZE_MAX};  // the block of each level last judged
       std::vector<RisingStep>* steps = rising ? &(*rising)[static_cast<std::size_t>(k)] : nullptr;
       if (steps) steps->clear();
-      placement_.walk(
-          col, row, pc, pr, std::min(exit_c, exit_r) * (1.0 + 1e-12), c, [&](double d, double inv_d, double drop) {
-            const double x = std::clamp(col + pc * d, 0.0, last_col), y = std::clamp(row + pr * d, 0.0, last_row);
-            const double z = sampler.at(x, y);
-            if (!std::isnan(z)) {
-              const double t = (z - z0 - drop) * inv_d;
-              if (steps && t > max_t) steps->push_back({static_cast<float>(d), static_cast<float>(t)});
-              max_t = std::max(max_t, t);
-              min_t = std::min(min_t, t);
-            }
-            if (early) {
-              const double bound_hi = (above - drop) * inv_d;  // decreasing in d since above >= 0
-              if (bound_hi <= max_t) {
-                if (!lo) return -1.0;
-                const double bound_lo = below * inv_d - c * s.max_distance;
-                if (bound_lo >= min_t) return -1.0;
-              }
-            }
-            // The largest block around this sample whose cells cannot beat max_t anywhere on
-            // the ray's stretch through it (curvature only lowers them further). Each block is
-            // judged once, when the ray enters it: checking every sample cost more than it saved.
-            for (std::size_t l = 0; l < levels_.size(); ++l) {
-              const MaxBlocks& level = levels_[l];
-              const int bx = static_cast<int>(x) >> level.shift;  // x <= last_col: always a block
-              const int by = static_cast<int>(y) >> level.shift;
-              const std::size_t b = static_cast<std::size_t>(by) * level.cols + bx;
-              if (b == judged[l]) continue;
-              judged[l] = b;
-              // The margin keeps a sample on the block's border, whose slope rounds differently
-              // from this bound, from tying with max_t: skipped samples stay strictly below it.
-              const double rise = level.max[b] - z0 + kTieMargin;
-              if (rise > 0 && !(rise <= max_t * d)) continue;  // cheap test before the exit distance
-              const double x0 = bx * level.size, y0 = by * level.size;
-              const double leave_c = pc > 0 ? (x0 + level.size - col) * inv_pc : (pc < 0 ? (x0 - col) * inv_pc : kInf);
-              const double leave_r = pr > 0 ? (y0 + level.size - row) * inv_pr : (pr < 0 ? (y0 - row) * inv_pr : kInf);
-              const double leave = std::min(leave_c, leave_r);
-              // rise / d' over [d, leave] peaks at d when rise > 0 and at leave otherwise.
-              if (!(rise <= max_t * (rise > 0 ? d : leave))) continue;
-              if (lo) {
-                // (fall - c d'^2) / d' has no interior minimum on [d, leave]: check both ends.
-                const double fall = level.min[b] - z0 - kTieMargin;
-                if (!(std::min(fall / d - c * d, fall / leave - c * leave) >= min_t)) continue;
-              }
-              return std::max(d, leave);
-            }
-            return d;
-          });
+      placement_.walk(col, row, pc, pr, exit * (1.0 + 1e-12), c, [&](double d, double inv_d, double drop) {
+        const double x = std::clamp(col + pc * d, box.col_lo, box.col_hi);
+        const double y = std::clamp(row + pr * d, box.row_lo, box.row_hi);
+        const double z = sampler.at(x, y);
+        if (!std::isnan(z)) {
+          const double t = (z - z0 - drop) * inv_d;
+          if (steps && t > max_t) steps->push_back({static_cast<float>(d), static_cast<float>(t)});
+          max_t = std::max(max_t, t);
+          min_t = std::min(min_t, t);
+        }
+        if (early) {
+          const double bound_hi = (above - drop) * inv_d;  // decreasing in d since above >= 0
+          if (bound_hi <= max_t) {
+            if (!lo) return -1.0;
+            const double bound_lo = below * inv_d - c * s.max_distance;
+            if (bound_lo >= min_t) return -1.0;
+          }
+        }
+        // The largest block around this sample whose cells cannot beat max_t anywhere on
+        // the ray's stretch through it (curvature only lowers them further). Each block is
+        // judged once, when the ray enters it: checking every sample cost more than it saved.
+        for (std::size_t l = 0; l < levels_.size(); ++l) {
+          const MaxBlocks& level = levels_[l];
+          const int bx = static_cast<int>(x) >> level.shift;  // x in the buffer: always a block
+          const int by = static_cast<int>(y) >> level.shift;
+          const std::size_t b = static_cast<std::size_t>(by) * level.cols + bx;
+          if (b == judged[l]) continue;
+          judged[l] = b;
+          // The margin keeps a sample on the block's border, whose slope rounds differently
+          // from this bound, from tying with max_t: skipped samples stay strictly below it.
+          const double rise = level.max[b] - z0 + kTieMargin;
+          if (rise > 0 && !(rise <= max_t * d)) continue;  // cheap test before the exit distance
+          const double x0 = bx * level.size, y0 = by * level.size;
+          const double leave_c = pc > 0 ? (x0 + level.size - col) * inv_pc : (pc < 0 ? (x0 - col) * inv_pc : kInf);
+          const double leave_r = pr > 0 ? (y0 + level.size - row) * inv_pr : (pr < 0 ? (y0 - row) * inv_pr : kInf);
+          const double leave = std::min(leave_c, leave_r);
+          // rise / d' over [d, leave] peaks at d when rise > 0 and at leave otherwise.
+          if (!(rise <= max_t * (rise > 0 ? d : leave))) continue;
+          if (lo) {
+            // (fall - c d'^2) / d' has no interior minimum on [d, leave]: check both ends.
+            const double fall = level.min[b] - z0 - kTieMargin;
+            if (!(std::min(fall / d - c * d, fall / leave - c * leave) >= min_t)) continue;
+          }
+          return std::max(d, leave);
+        }
+        return d;
+      });
       up[plane * k] = std::isinf(max_t) ? 0.0f : static_cast<float>(std::atan(max_t));
       if (lo) lo[plane * k] = std::isinf(min_t) ? 0.0f : static_cast<float>(std::atan(min_t));
     }
@@ -231,6 +232,7 @@ class RayScanner {
   ScanSettings s_;
   Placement placement_;
   HeightSampler sampler_;
+  TrackBox box_;
   double zmax_ = -std::numeric_limits<double>::infinity(), zmin_ = std::numeric_limits<double>::infinity();
   std::vector<double> sin_k_, cos_k_;
   std::vector<MaxBlocks> levels_;  // coarse first

@@ -24,6 +24,7 @@
 #include "skyview/core/error.h"
 #include "skyview/core/number_text.h"
 #include "skyview/horizon/surface_mesh.h"
+#include "track_box.h"
 
 namespace skyview::detail {
 namespace {
@@ -71,7 +72,7 @@ void reject_own_triangles(const RTCFilterFunctionNArguments* args) {
 // Vertices in metres east/north of the buffer's first cell and height relative to the base.
 class TerrainMesh {
  public:
-  TerrainMesh(RTCDevice device, const Terrain& t, double sign) : t_(t), sign_(sign) {
+  TerrainMesh(RTCDevice device, const Terrain& t, double sign) : t_(t), sign_(sign), box_(track_box(t)) {
     const int w = t.width(), h = t.height();
     width_ = w;
     j_ = t.frame.at(t.origin_col + 0.5 * w, t.origin_row + 0.5 * h);
@@ -157,9 +158,25 @@ class TerrainMesh {
     return std::min(d, range);
   }
 
+  // Where the eye's track along the azimuth ends: at `range` (for a cell already the last crossing
+  // within the radius: reach), or at the last row or column crossing before it leaves the raster's
+  // extent (track_box.h), where the march and the sweep stop reading. The mesh goes on over the
+  // ring beyond the extent; what rays meet beyond `end` is not terrain (blocking_angle). Negative
+  // or 0 where no crossing is left.
+  struct Track {
+    double end = 0;      // the last crossing read
+    double through = 0;  // where the track leaves the extent (or the radius): rays run this far
+  };
+  Track track(const Eye& e, double sin_az, double cos_az, double range) const {
+    double pc, pr;
+    j_.pixel_step(sin_az, cos_az, pc, pr);
+    const double exit = box_.exit(e.col, e.row, pc, pr);
+    return {std::min(range, last_crossing_within(e.col, e.row, pc, pr, exit)), std::min(range, exit)};
+  }
+
   // Slope, in this mesh's sign, from cell (col, row) to where the ground track along the azimuth
   // first crosses a row or column line (read linearly along it, as the march reads it): the far
-  // edge of the triangles around the cell's vertex. -inf where that crossing leaves the buffer, NaN
+  // edge of the triangles around the cell's vertex. -inf where that crossing leaves the raster's extent, NaN
   // where it touches nodata (which never occludes): neither bounds anything.
   double first_crossing_slope(int col, int row, double sin_az, double cos_az) const {
     double pc, pr;
@@ -170,7 +187,7 @@ class TerrainMesh {
     double y = to_col <= to_row ? row + pr * d : row + (pr > 0 ? 1 : -1);
     if (to_col <= to_row) y = std::abs(y - std::round(y)) < 1e-9 ? std::round(y) : y;
     if (to_col > to_row) x = std::abs(x - std::round(x)) < 1e-9 ? std::round(x) : x;
-    if (x < 0 || y < 0 || x > t_.width() - 1 || y > t_.height() - 1) return -kInf;
+    if (!box_.contains(x, y)) return -kInf;
     return sign_ * (surface(x, y) - t_.heights(col, row)) / d;  // NaN (nodata) compares false: no bound
   }
 
@@ -186,18 +203,31 @@ class TerrainMesh {
     const double col = e.col, row = e.row;
     double pc, pr;
     j_.pixel_step(sin_az, cos_az, pc, pr);
-    const double last_c = t_.width() - 1, last_r = t_.height() - 1;
-    const double to_c = pc > 0 ? (last_c - col) / pc : pc < 0 ? -col / pc : kInf;
-    const double to_r = pr > 0 ? (last_r - row) / pr : pr < 0 ? -row / pr : kInf;
-    const double end = std::min({to_c, to_r, range});
+    const double end = std::min(box_.exit(col, row, pc, pr), range);
     if (!(end > 0.0) || std::isinf(end)) return std::numeric_limits<double>::quiet_NaN();
     const double back = 0.5 / std::max(std::abs(pc), std::abs(pr));  // metres per half cell
     for (double d = end; d > 0.0; d -= back) {
-      const double x = std::clamp(col + pc * d, 0.0, last_c), y = std::clamp(row + pr * d, 0.0, last_r);
+      const double x = std::clamp(col + pc * d, box_.col_lo, box_.col_hi);
+      const double y = std::clamp(row + pr * d, box_.row_lo, box_.row_hi);
       const double z = surface(x, y);
       if (!std::isnan(z)) return (sign_ * z - e.z) / d;
     }
     return std::numeric_limits<double>::quiet_NaN();
+  }
+
+  // True when the ray meets triangle `prim` from inside the terrain: along the triangle's upward
+  // normal. A skirt leans outward as it hangs, so its upward normal points away from the mesh: a ray
+  // meets it from inside when it heads out from under the mesh's edge.
+  bool from_inside(unsigned prim, const RTCRay& ray) const {
+    const unsigned* tri = mesh_.indices + 3 * prim;
+    const float* a = mesh_.vertices + 3 * tri[0];
+    const float* b = mesh_.vertices + 3 * tri[1];
+    const float* c = mesh_.vertices + 3 * tri[2];
+    const double ux = double(b[0]) - a[0], uy = double(b[1]) - a[1], uz = double(b[2]) - a[2];
+    const double vx = double(c[0]) - a[0], vy = double(c[1]) - a[1], vz = double(c[2]) - a[2];
+    double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+    if (nz < 0) nx = -nx, ny = -ny, nz = -nz;  // the surface's upward normal
+    return nx * ray.dir_x + ny * ray.dir_y + nz * ray.dir_z > 0.0;
   }
 
   // The mesh's height at pixel position (x, y) inside the buffer, from the triangle holding it (the
@@ -218,15 +248,24 @@ class TerrainMesh {
   // along azimuth/elevation, meets within `range`: the top of the first triangle it hits, cut by
   // the azimuth's vertical plane. NaN when it meets nothing. Rays below `first_slope` (from
   // first_crossing_slope) meet the terrain at once, and that crossing's angle is the answer.
-  double blocking_angle(const Eye& e, double sin_az, double cos_az, double elevation, double range,
-                        double first_slope) const {
+  // The ray runs on to `through` (>= range, where the track leaves the raster's extent): a ray that
+  // went into the terrain through a hit lost in rounding (a ray along a grid line meets the mesh on
+  // its edges) comes out through the surface from below before it, and is blocked; what it meets
+  // from above beyond `range`, the strip between the last crossing and the extent, is not read (the
+  // march and the sweep stop at the last crossing).
+  double blocking_angle(const Eye& e, double sin_az, double cos_az, double elevation, double range, double first_slope,
+                        double through) const {
     if (std::tan(elevation) < first_slope) return std::atan(first_slope);
     const double z = e.z;
     EyeContext context = context_of(e);
     RTCRayHit hit{};
-    hit.ray = ray_from(e, sin_az, cos_az, elevation, range);
+    hit.ray = ray_from(e, sin_az, cos_az, elevation, std::max(range, through));
     hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene_.get(), &context.base, &hit);
+    if (hit.hit.geomID != RTC_INVALID_GEOMETRY_ID && hit.ray.tfar * std::cos(elevation) > range) {
+      if (from_inside(hit.hit.primID, hit.ray)) return elevation;
+      hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    }
     if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
       const double end = end_slope(e, sin_az, cos_az, range);
       return std::tan(elevation) < end ? std::atan(end) : std::numeric_limits<double>::quiet_NaN();
@@ -265,6 +304,7 @@ class TerrainMesh {
   const Terrain& t_;
   double sign_;
   Jacobian j_;
+  TrackBox box_;
   EmbreeScene scene_;
   int width_ = 0;
   Triangles mesh_;  // the geometry's buffers (Embree owns them)
@@ -325,12 +365,12 @@ class RaycastEngine final : public HorizonEngine {
           const Eye eye = upper.cell_eye(col, row);
           for (int k = 0; k < n; ++k) {
             const double first = upper.first_crossing_slope(col, row, sin_k[k], cos_k[k]);
-            out.upper_at(cell_index, k) =
-                static_cast<float>(climb_horizon(upper, eye, sin_k[k], cos_k[k], reach_k[k], first));
+            const TerrainMesh::Track end = upper.track(eye, sin_k[k], cos_k[k], reach_k[k]);
+            out.upper_at(cell_index, k) = static_cast<float>(climb_horizon(upper, eye, sin_k[k], cos_k[k], end, first));
             if (lower) {
               const double lower_first = lower->first_crossing_slope(col, row, sin_k[k], cos_k[k]);
               out.lower_at(cell_index, k) = static_cast<float>(
-                  -climb_horizon(*lower, lower->cell_eye(col, row), sin_k[k], cos_k[k], reach_k[k], lower_first));
+                  -climb_horizon(*lower, lower->cell_eye(col, row), sin_k[k], cos_k[k], end, lower_first));
             }
           }
           if (p_.rays > 0) monte_carlo_svf(upper, terrain, col, row, range, out, cell_index);
@@ -355,12 +395,15 @@ class RaycastEngine final : public HorizonEngine {
   // slopes, where a climb gains only a triangle, the rays after the first kClimbs halve the bracket:
   // on a 1 m lidar DEM 13 rays per direction, and no faster than the bisection.
   // `first`: the slope to the first crossing for a cell's eye (first_crossing_slope), -inf for a point's.
-  static double climb_horizon(const TerrainMesh& mesh, const Eye& eye, double s, double c, double range, double first) {
+  // `track`: where the eye's track ends (TerrainMesh::track).
+  static double climb_horizon(const TerrainMesh& mesh, const Eye& eye, double s, double c,
+                              const TerrainMesh::Track& track, double first) {
+    const double range = track.end;
     if (!(range > 0.0)) return 0.0;            // no crossing within the radius: nothing in range
     double lo = -0.5 * M_PI, hi = 0.5 * M_PI;  // the horizon is in [lo, hi): lo seen (or the nadir), hi open
     bool blocked = false;
     auto probe = [&](double elevation) {
-      const double top = mesh.blocking_angle(eye, s, c, elevation, range, first);
+      const double top = mesh.blocking_angle(eye, s, c, elevation, range, first, track.through);
       if (std::isnan(top)) {
         hi = elevation;
       } else {
@@ -401,7 +444,7 @@ class RaycastEngine final : public HorizonEngine {
         const double sin_zenith = std::sqrt(u), azimuth = 2.0 * M_PI * v;
         const double elevation = std::acos(sin_zenith);  // elevation = 90° - zenith
         const double sa = std::sin(azimuth), ca = std::cos(azimuth);
-        const double reach = mesh.reach(sa, ca, range);
+        const double reach = mesh.track(eye, sa, ca, mesh.reach(sa, ca, range)).end;
         open += !(reach > 0.0) ||
                 !mesh.occluded(eye, sa, ca, elevation, reach, mesh.first_crossing_slope(col, row, sa, ca));
       }
@@ -437,8 +480,8 @@ void raycast_point_horizons(const Terrain& extended, const std::vector<EyePoint>
       for (int k = 0; k < directions; ++k) {
         const double az = sector_rotation + sector_azimuth(k, directions);
         const double s = std::sin(az), c = std::cos(az);
-        out[i * directions + k] =
-            static_cast<float>(RaycastEngine::climb_horizon(mesh, eye, s, c, range, kNoFirstSlope));
+        out[i * directions + k] = static_cast<float>(
+            RaycastEngine::climb_horizon(mesh, eye, s, c, mesh.track(eye, s, c, range), kNoFirstSlope));
       }
       if (progress) progress->advance(1);
     }

@@ -171,7 +171,11 @@ class DirectionSweep {
     // Row crossings, linear along the minor axis: line m0 + l lies at cell i0 + l plus fx.
     const double base = std::floor(s.shift), fx = s.shift - base;
     const long i0 = m0 + static_cast<long>(base);
-    const int ra = clamp_line(-i0), rb = clamp_line(g.minor_n - (fx > 0.0 ? 1 : 0) - i0);
+    // Only samples inside the raster's extent (SweepGeometry::major_lo): tracks end there.
+    int ra = clamp_line(std::max<long>(-i0, g.minor_first(static_cast<double>(i0) + fx)));
+    int rb =
+        clamp_line(std::min<long>(g.minor_n - (fx > 0.0 ? 1 : 0) - i0, g.minor_last(static_cast<double>(i0) + fx)));
+    if (!g.major_inside(s.major)) rb = ra;
     const float* zr = g.row(s.major);  // indexed from the row's start: i0 may be negative
     const double t0 = s.major * g_.t_major + (static_cast<double>(i0) + fx) * g_.t_minor;
     if (fx > 0.0) {
@@ -185,7 +189,9 @@ class DirectionSweep {
     int ca = 0, cb = 0;
     if (next && next->crossing) {
       const long x0 = m0 + next->cross_at;
-      ca = clamp_line(-x0), cb = clamp_line(g.minor_n - x0);
+      ca = clamp_line(std::max<long>(-x0, g.minor_first(static_cast<double>(x0))));
+      cb = clamp_line(std::min<long>(g.minor_n - x0, g.minor_last(static_cast<double>(x0))));
+      if (!g.major_inside(next->major + g.toward * next->lambda)) cb = ca;
       const float* z0 = g.row(next->major);
       const float* z1 = g.row(next->major + g.toward);
       const double lambda = next->lambda;
@@ -228,10 +234,14 @@ class DirectionSweep {
       const long x = m + s - midpoint;
       return x >= 0 ? (x + per - 1) / per : -((-x) / per);
     };
-    const int a = static_cast<int>(std::max<long>(0, first_at(m0, 0)));
-    const int b = static_cast<int>(std::min<long>(g_.minor_n, first_at(m0 + band_lines(), 0)));
-    const int ma = per == 2 ? static_cast<int>(std::max<long>(0, first_at(m0, 1))) : 0;
-    const int mb = per == 2 ? static_cast<int>(std::min<long>(g_.minor_n - 1, first_at(m0 + band_lines(), 1))) : 0;
+    // Only cells and midpoints inside the raster's extent (SweepGeometry::major_lo): tracks end there.
+    if (!g_.major_inside(major)) return;
+    const int a = static_cast<int>(std::max<long>(g_.minor_first(0.0), first_at(m0, 0)));
+    const int b = static_cast<int>(std::min<long>(g_.minor_last(0.0), first_at(m0 + band_lines(), 0)));
+    const int ma = per == 2 ? static_cast<int>(std::max<long>(g_.minor_first(0.5), first_at(m0, 1))) : 0;
+    const int mb = per == 2 ? static_cast<int>(std::min<long>(std::min(g_.minor_n - 1, g_.minor_last(0.5)),
+                                                              first_at(m0 + band_lines(), 1)))
+                            : 0;
     if (a >= b && ma >= mb) return;
     const float* zrow = g_.row(major);
     const double t_row = major * g_.t_major;

@@ -1,5 +1,6 @@
 #include "horizon/sweep_geometry.h"
 
+#include "horizon/track_box.h"
 #include "skyview/raster/ground_frame.h"
 
 namespace skyview::detail::sweep {
@@ -36,6 +37,11 @@ SweepGeometry make_geometry(const Terrain& terrain, const float* transposed, dou
   // Lines that advance by columns read the transposed copy, so every line read is contiguous.
   g.z = g.by_rows ? terrain.heights.data() : transposed;
   g.major_stride = g.by_rows ? W : H;
+  const TrackBox box = track_box(terrain);
+  g.major_lo = g.by_rows ? box.row_lo : box.col_lo;
+  g.major_hi = g.by_rows ? box.row_hi : box.col_hi;
+  g.minor_lo = g.by_rows ? box.col_lo : box.row_lo;
+  g.minor_hi = g.by_rows ? box.col_hi : box.row_hi;
   return g;
 }
 
@@ -49,8 +55,8 @@ std::vector<NearCrossing> near_crossings(const SweepGeometry& g, int near_steps,
       const double d = (s - 1 + lambda) * g.t_step;
       const int qi = static_cast<int>(q);
       if (d <= radius)
-        out.push_back(
-            {s - 1, qi, s, qi, static_cast<float>(lambda), static_cast<float>(1.0 / d), static_cast<float>(c * d)});
+        out.push_back({s - 1, qi, s, qi, static_cast<float>(lambda), static_cast<float>(1.0 / d),
+                       static_cast<float>(c * d), s - 1 + lambda, q});
     }
     const double d = s * g.t_step;
     const int i_off = static_cast<int>(std::floor(off));
@@ -58,7 +64,7 @@ std::vector<NearCrossing> near_crossings(const SweepGeometry& g, int near_steps,
     // With no fraction the neighbour is not read: a NaN there would poison w * (p1 - p0).
     if (d <= radius)
       out.push_back({s, i_off, s, f > 0.0 ? i_off + 1 : i_off, static_cast<float>(f), static_cast<float>(1.0 / d),
-                     static_cast<float>(c * d)});
+                     static_cast<float>(c * d), static_cast<double>(s), off});
   }
   return out;
 }

@@ -35,6 +35,9 @@ struct SweepGeometry {
   double k_step = 0;                       // minor drift per step ahead
   const float* z = nullptr;                // heights, minor axis contiguous (the transposed copy for columns)
   std::ptrdiff_t major_stride = 0;
+  // Where samples may lie (track_box.h, in major and minor positions): tracks end where they leave
+  // the raster's extent, and no sample beyond it joins a hull or a near field.
+  double major_lo = 0, major_hi = 0, minor_lo = 0, minor_hi = 0;
 
   int major_at(int step) const { return toward < 0 ? step : major_n - 1 - step; }
   int step_at(int major) const { return toward < 0 ? major : major_n - 1 - major; }
@@ -46,6 +49,10 @@ struct SweepGeometry {
     minor_hi = std::min(minor_n, by_rows ? w.col0 + w.cols : w.row0 + w.rows);
   }
   const float* row(int major) const { return z + major * major_stride; }
+  bool major_inside(double major) const { return major >= major_lo && major <= major_hi; }
+  // The offsets i from `base` with base + i inside along the minor axis: [first, last).
+  int minor_first(double base) const { return static_cast<int>(std::ceil(minor_lo - base)); }
+  int minor_last(double base) const { return static_cast<int>(std::floor(minor_hi - base)) + 1; }
 };
 
 SweepGeometry make_geometry(const Terrain& terrain, const float* transposed, double azimuth);
@@ -58,8 +65,9 @@ SweepGeometry make_geometry(const Terrain& terrain, const float* transposed, dou
 struct NearCrossing {
   int ahead0, col0, ahead1, col1;
   float w;
-  float scale;  // 1 / distance
-  float drop;   // curvature drop over the distance, in slope units
+  float scale;           // 1 / distance
+  float drop;            // curvature drop over the distance, in slope units
+  double ahead, across;  // the sample's place: steps ahead and minor offset from the cell, exactly
 };
 
 // The first near_steps steps of a cell's own ray, and every minor grid line they cross, within

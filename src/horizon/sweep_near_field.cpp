@@ -37,11 +37,17 @@ __attribute__((always_inline)) inline void near_extremes(const SweepGeometry& g,
   // that read all of them inside the row.
   std::size_t count = 0;
   int all_lo = a, all_hi = b;
+  // A crossing outside the raster's extent ends the track (SweepGeometry::major_lo); along a row,
+  // cells whose crossing lies beyond it on the minor axis skip it.
+  auto first_cell = [&](const NearCrossing& x) { return std::max({g.minor_first(x.across), -x.col0, -x.col1}); };
+  auto last_cell = [&](const NearCrossing& x) {
+    return std::min({g.minor_last(x.across), g.minor_n - x.col0, g.minor_n - x.col1});
+  };
   for (const NearCrossing& x : crossings) {
     const int r1 = major + g.toward * x.ahead1;
-    if (r1 < 0 || r1 >= g.major_n) break;
-    all_lo = std::max({all_lo, -x.col0, -x.col1});
-    all_hi = std::min({all_hi, g.minor_n - x.col0, g.minor_n - x.col1});
+    if (r1 < 0 || r1 >= g.major_n || !g.major_inside(major + g.toward * x.ahead)) break;
+    all_lo = std::max(all_lo, first_cell(x));
+    all_hi = std::min(all_hi, last_cell(x));
     ++count;
   }
   constexpr int kBlock = 32;
@@ -79,8 +85,8 @@ __attribute__((always_inline)) inline void near_extremes(const SweepGeometry& g,
   auto by_crossing = [&](int lo, int hi) {
     for (std::size_t i = 0; i < count && lo < hi; ++i) {
       const NearCrossing& x = crossings[i];
-      const int ma = std::max({lo, -x.col0, -x.col1});
-      const int mb = std::min({hi, g.minor_n - x.col0, g.minor_n - x.col1});
+      const int ma = std::max(lo, first_cell(x));
+      const int mb = std::min(hi, last_cell(x));
       const float* z0 = g.row(major + g.toward * x.ahead0);
       const float* z1 = g.row(major + g.toward * x.ahead1);
       const int c0 = x.col0, c1 = x.col1;
