@@ -27,13 +27,6 @@ void add_sky_options(CLI::App& app, SkyRequest& r, const std::string& site_defau
   app.add_option("--epw", r.epw, "EnergyPlus weather file (perez-epw; isotropic from measured data)");
 }
 
-const std::vector<std::string>& sky_option_names() {
-  static const std::vector<std::string> names{"--lat",  "--lon", "--elevation", "--from",      "--to",
-                                              "--step", "--tz",  "--sky",       "--turbidity", "--luminous-efficacy",
-                                              "--epw"};
-  return names;
-}
-
 void check_sky_options(const CLI::App& app, const SkyRequest& r) {
   check_sky_request(r);
   std::set<std::string> given;

@@ -20,9 +20,6 @@ namespace skyview::cli {
 // ("default with --epw: the file's").
 void add_sky_options(CLI::App& app, SkyRequest& request, const std::string& site_default);
 
-// The sky options' names, for commands that refuse them all (a sky read from a file).
-const std::vector<std::string>& sky_option_names();
-
 // Refuses what the request's sky would not use (--step with an EPW, --turbidity with perez-epw,
 // --luminous-efficacy beyond Preetham's energy) and options that do not go together.
 void check_sky_options(const CLI::App& app, const SkyRequest& request);

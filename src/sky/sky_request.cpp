@@ -15,6 +15,13 @@ namespace skyview {
 // are about 40 % of the broadband ones, which a reader of the numbers must be told.
 const char* const kHosekSpectrum = "320-720 nm only (Hosek-Wilkie bands, not rescaled to broadband: about 40%)";
 
+const std::vector<std::string>& sky_option_names() {
+  static const std::vector<std::string> names{"--lat",  "--lon", "--elevation", "--from",      "--to",
+                                              "--step", "--tz",  "--sky",       "--turbidity", "--luminous-efficacy",
+                                              "--epw"};
+  return names;
+}
+
 bool measured_sky(const SkyRequest& r) { return r.sky == "perez-epw" || (r.sky == "isotropic" && !r.epw.empty()); }
 
 bool preetham_energy(const SkyRequest& r) { return r.sky == "preetham" || (r.sky == "isotropic" && r.epw.empty()); }

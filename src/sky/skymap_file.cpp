@@ -62,33 +62,43 @@ SkymapFile read_skymap(const std::string& path) {
       std::abs(gt[3] - 90.0) > 1e-9 || std::abs(gt[5] * height + 90.0) > 1e-6 || gt[2] != 0.0 || gt[4] != 0.0) {
     throw Error(not_skymap + "its cells do not span 0..360 degrees of azimuth and 90..0 of elevation");
   }
-  SkymapFile out;
+  std::map<std::string, std::string> metadata;
   if (char** items = ds->GetMetadata(); items) {
     for (char** item = items; *item; ++item) {
       const std::string text = *item;
       const auto eq = text.find('=');
-      if (eq != std::string::npos) out.metadata[text.substr(0, eq)] = text.substr(eq + 1);
+      if (eq != std::string::npos) metadata[text.substr(0, eq)] = text.substr(eq + 1);
     }
   }
+  ExposureMap map(width, height);
+  for (int b = 1; b <= 2; ++b) {
+    std::vector<float>& band = map.band(b == 1 ? ExposureBand::direct : ExposureBand::diffuse);
+    if (ds->GetRasterBand(b)->RasterIO(GF_Read, 0, 0, width, height, band.data(), width, height, GDT_Float32, 0, 0) !=
+        CE_None) {
+      throw Error("cannot read band " + std::to_string(b) + " of '" + path + "'");
+    }
+  }
+  return skymap_from_bands(std::move(map), std::move(metadata), path);
+}
+
+SkymapFile skymap_from_bands(ExposureMap map, std::map<std::string, std::string> metadata, const std::string& name) {
+  const std::string not_skymap = "'" + name + "' is not a sky map written by skyview skymap: ";
+  SkymapFile out;
+  out.metadata = std::move(metadata);
   const auto& m = out.metadata;
   out.latitude_deg = metadata_number(m, "LATITUDE");
   out.longitude_deg = metadata_number(m, "LONGITUDE");
   if (m.count("SKY") == 0 || std::isnan(out.latitude_deg) || std::isnan(out.longitude_deg)) {
     throw Error(not_skymap + "its metadata lack SKY, LATITUDE or LONGITUDE");
   }
-  out.map = ExposureMap(width, height);
   for (int b = 1; b <= 2; ++b) {
-    std::vector<float>& band = out.map.band(b == 1 ? ExposureBand::direct : ExposureBand::diffuse);
-    if (ds->GetRasterBand(b)->RasterIO(GF_Read, 0, 0, width, height, band.data(), width, height, GDT_Float32, 0, 0) !=
-        CE_None) {
-      throw Error("cannot read band " + std::to_string(b) + " of '" + path + "'");
-    }
-    for (const float v : band) {
+    for (const float v : map.band(b == 1 ? ExposureBand::direct : ExposureBand::diffuse)) {
       if (!(v >= 0.0f) || std::isinf(v))
         throw Error(not_skymap + "band " + std::to_string(b) + " holds " +
                     (std::isnan(v) ? "nodata" : "values below 0 or infinite"));
     }
   }
+  out.map = std::move(map);
   SkyRequest& r = out.request;
   r.sky = m.at("SKY");
   r.latitude = out.latitude_deg;

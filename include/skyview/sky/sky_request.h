@@ -30,6 +30,11 @@ struct SkyRequest {
   std::string step = "30m";  // analytic skies
 };
 
+// The sky options' long names on the command line (--lat, --lon, --elevation, --from, --to,
+// --step, --tz, --sky, --turbidity, --luminous-efficacy, --epw), for runs that refuse them all (a
+// sky read from a map file).
+const std::vector<std::string>& sky_option_names();
+
 // Whether the request's sky reads measured irradiances (perez-epw, or isotropic with --epw).
 bool measured_sky(const SkyRequest& request);
 // Whether its sun and diffuse energy come from Preetham's clear sky (preetham, isotropic without --epw).

@@ -29,4 +29,8 @@ struct SkymapFile {
 // degrees of azimuth and 90..0 of elevation, and the SKY, LATITUDE and LONGITUDE metadata.
 SkymapFile read_skymap(const std::string& path);
 
+// A map already in memory (skyview.skymap() in Python) with its metadata, checked as read_skymap
+// checks a file's (`name` stands for the file in messages), and the request read from it.
+SkymapFile skymap_from_bands(ExposureMap map, std::map<std::string, std::string> metadata, const std::string& name);
+
 }  // namespace skyview
