@@ -59,14 +59,17 @@ void prepare_far_field(HorizonJob& job, double max_error) {
   }
   s.halo_m = halo;
   if (halo >= diagonal) bound = FarFieldBound{};
+  // The near field: the sweep at unlimited radius on each tile's window plus halo (linear time,
+  // and it sees everything within H and more); other methods at --radius H.
   HorizonParams near = job.engine->params();
-  near.radius = halo;
+  near.radius = job.engine->name() == "sweep" ? 0.0 : halo;
   near.curvature = curvature > 0 ? "on" : "off";
   job.engine = make_horizon_engine(job.engine->name(), near);
   job.far_field = std::make_shared<FarField>(pyramid, s, centre, w, h);
   job.far_halo_m = halo;
   job.tiles.reserved = pyramid->bytes();
   job.tiles.far_field = true;
+  job.tiles.halo_m = halo;
   auto& m = job.metadata;
   m["FAR_FIELD"] = halo >= diagonal
                        ? "none: the bound asked needs a halo as wide as the raster's reach, which the "

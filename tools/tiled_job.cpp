@@ -21,8 +21,9 @@ void add_tiling_options(CLI::App& app, TilingOptions& o) {
   o.app = &app;
   app.add_option("--tile-size", o.tile_size,
                  "Compute tile by tile, each tile this many cells square, reading its window plus a halo as wide "
-                 "as --radius through GDAL (never the whole raster); results are the same as a whole run's. Needs "
-                 "a finite --radius");
+                 "as --radius through GDAL (never the whole raster); results are the same as a whole run's. horizon "
+                 "and exposure need a finite --radius; svf without one adds a far field beyond a halo chosen by "
+                 "--far-field-error");
   app.add_option("--tiles-dir", o.tiles_dir,
                  "Write one GeoTIFF per tile into this folder (tile_<row>_<col>.tif, created if missing) and a VRT "
                  "mosaic of them at the output (which must end in .vrt), with a manifest (manifest.json) that lets a "
@@ -70,7 +71,7 @@ TilePlan plan_tiles(const TileRequest& request, const HorizonEngine& engine, int
 
 void choose_tile_size(TilePlan& plan, const TileRequest& request, const HorizonEngine& engine, const GroundFrame& frame,
                       int width, int height) {
-  plan.halo = halo_cells(frame, {0, 0, width, height}, engine.radius());
+  plan.halo = halo_cells(frame, {0, 0, width, height}, plan.far_field ? plan.halo_m : engine.radius());
   if (plan.tile_size == 0) {
     plan.tile_size = tile_size_for(request.memory(engine), plan.limit - std::min(plan.limit, plan.reserved), plan.halo,
                                    std::max(width, height));
@@ -78,7 +79,7 @@ void choose_tile_size(TilePlan& plan, const TileRequest& request, const HorizonE
       throw Error((request.options.memory_limit.empty() ? "the " + memory_text(plan.limit) + " available"
                                                         : "--memory-limit " + request.options.memory_limit) +
                   " holds no tile with its halo of " + std::to_string(plan.halo) + " cells" +
-                  (plan.far_field ? " (" + number_text(engine.radius()) +
+                  (plan.far_field ? " (" + number_text(plan.halo_m) +
                                         " m, what the far field's bound asks for); allow more memory or give a larger "
                                         "--far-field-error or a --radius"
                                   : " (--radius " + number_text(engine.radius()) +

@@ -46,6 +46,7 @@ struct TilePlan {
   int skipped = 0;                   // tiles a --tiles-dir rerun found finished
   std::uint64_t limit = 0;           // bytes (--memory-limit, or what was available)
   bool far_field = false;            // the halo is the far field's (far_field_job.h), not --radius
+  double halo_m = 0;                 // the far field's halo in metres (else the engine's radius)
   std::uint64_t reserved = 0;        // bytes of the limit held for the whole run (the far field's pyramid)
   std::uint64_t whole_estimate = 0;  // bytes the whole run would take by the memory model
   std::string why;                   // "--tile-size 64", "the whole run needs about ... over ..."

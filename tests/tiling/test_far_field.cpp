@@ -158,6 +158,24 @@ TEST(FarField, TiledSvfWithoutRadiusIsWithinTheBoundOnRealTerrain) {
   expect_within_bound(dem, dir, " --products svf,sky_visibility,openness_positive --samples 1500", 256, 0.05);
 }
 
+TEST(FarField, MaxErrorSetsTheBoundAndTheOptionIsRefusedWithoutAFarField) {
+  const std::string dir = temp_dir("far-field-options");
+  const std::string dsm = write_small_city(dir, 240, 200);
+  const RunResult r = run_skyview("svf " + dsm + " " + dir + "/m.tif --tile-size 64 --max-error 0.3", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(metadata_item(dir + "/m.tif", "FAR_FIELD_ERROR_ASKED"), "0.3 (asked)");
+  EXPECT_LE(std::stod(metadata_item(dir + "/m.tif", "FAR_FIELD_BOUND_SVF")), 0.3);
+  EXPECT_LT(std::stod(metadata_item(dir + "/m.tif", "FAR_FIELD_HALO_M")), 300.0);  // a far field, not the whole raster
+  expect_one_line_error(
+      run_skyview("svf " + dsm + " " + dir + "/a.tif --radius 9 --tile-size 16 --far-field-error 0.1", dir),
+      "--far-field-error applies to tiled runs without --radius", 2);
+  expect_one_line_error(run_skyview("svf " + dsm + " " + dir + "/b.tif --far-field-error 0.1", dir),
+                        "--far-field-error applies to tiled runs without --radius", 2);
+  expect_one_line_error(run_skyview("svf " + dsm + " " + dir + "/c.tif --tile-size 16 --far-field-error 0", dir),
+                        "--far-field-error", 2);
+  for (const char* name : {"/a.tif", "/b.tif", "/c.tif"}) EXPECT_FALSE(std::filesystem::exists(dir + name)) << name;
+}
+
 TEST(FarField, HorizonStillNeedsARadiusInTiles) {
   const std::string dir = temp_dir("far-field-horizon");
   const std::string dsm = write_small_city(dir);

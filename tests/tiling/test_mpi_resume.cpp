@@ -92,3 +92,25 @@ TEST(MpiTiles, ARankKilledMidRunThenARerunGiveTheSameBitsAsOneProcess) {
 }
 
 }  // namespace
+
+namespace {
+
+// Every rank builds the far field's pyramid itself, from the same raster: the same bits.
+TEST(MpiTiles, FarFieldRunsGiveTheSameBitsAsOneProcess) {
+  if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun is not installed";
+  const std::string dir = temp_dir("mpi-far-field");
+  const std::string dsm = write_small_city(dir, 240, 200);  // a far field beyond 183 m
+  const std::string common = " --directions 8 --tile-size 64 --far-field-error 0.3";
+  ASSERT_EQ(run_skyview("svf " + dsm + " " + dir + "/one.vrt" + common + " --tiles-dir " + dir + "/one", dir).exit_code,
+            0);
+  const RunResult r =
+      run_executable("mpirun --allow-run-as-root --oversubscribe -np 2 " + std::string(SKYVIEW_EXE),
+                     "svf " + dsm + " " + dir + "/two.vrt" + common + " --tiles-dir " + dir + "/two", dir);
+  if (r.exit_code != 0 && r.err.find("built without MPI") != std::string::npos)
+    GTEST_SKIP() << "this build has no MPI: " << r.err;
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(same_bands(dir + "/two.vrt", dir + "/one.vrt"));
+  EXPECT_LT(std::stod(metadata_item(dir + "/two.vrt", "FAR_FIELD_HALO_M")), 300.0);
+}
+
+}  // namespace
