@@ -14,7 +14,7 @@ std::unique_ptr<HorizonEngine> make_sweep_engine(const HorizonParams& params);
 std::unique_ptr<HorizonEngine> make_raycast_engine(const HorizonParams& params);
 
 // The march's horizons at the listed cells of a buffer already extended at the raster's edges
-// (extend_at_raster_edges), at every row and column crossing to the buffer's edge: exact on the
+// (extend_at_raster_edges), at every row and column crossing to the raster's extent: exact on the
 // surface every method reads, with no radius. `out` holds them as a window of one row, cell i in
 // column i, in `directions` uniform sectors rotated by `sector_rotation` (HorizonField). What the svf check (SvfCheck)
 // measures runs against.
@@ -29,7 +29,7 @@ struct EyePoint {
 
 // Horizons of eyes on a buffer already extended at the raster's edges, [eye * directions + k], along
 // `directions` uniform sectors turned by `sector_rotation`: the march's walk from each eye
-// (RayScanner::scan_from) to `radius` metres (infinity: the buffer's edge) with curvature c, and with
+// (RayScanner::scan_from) to `radius` metres (infinity: the raster's extent) with curvature c, and with
 // `rising` each direction's RisingSteps.
 void march_point_horizons(const Terrain& extended, const std::vector<EyePoint>& eyes, int directions,
                           double sector_rotation, double radius, double curvature, bool early_exit,

@@ -51,7 +51,7 @@ PointHorizons point_horizons(const Terrain& terrain, const std::vector<Observer>
   out.eye.assign(n, std::numeric_limits<double>::quiet_NaN());
   std::vector<detail::EyePoint> eyes(n);
   // The raster covers half a cell beyond its outer cell centres; the ring extend_at_raster_edges
-  // adds carries the surface there.
+  // adds carries the surface there, and every track ends there (track_box.h).
   const double lo_col = -0.5, hi_col = terrain.raster_width() - 0.5 - terrain.origin_col;
   const double lo_row = -0.5, hi_row = terrain.raster_height() - 0.5 - terrain.origin_row;
   for (std::size_t i = 0; i < n; ++i) {

@@ -70,7 +70,9 @@ Terrain crop_terrain(const Terrain& terrain, const Window& window, int halo, Win
 // nodata); `inner` receives `window`'s position in it. The mesh over cell centres ends half a cell
 // inside the raster's extent, so a ray nearly along the boundary from a boundary cell (due north
 // from the outer column of a UTM raster, where grid north is a hair off true north) would leave it
-// at once and miss terrain a few cells ahead in the same column; on the ring it runs on.
+// at once and miss terrain a few cells ahead in the same column; on the ring it runs on. The ring
+// carries heights only up to the raster's extent, where every engine's track ends
+// (src/horizon/track_box.h): it is not terrain beyond it.
 Terrain extend_at_raster_edges(const Terrain& terrain, const Window& window, Window& inner);
 
 }  // namespace skyview
