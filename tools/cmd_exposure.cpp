@@ -27,23 +27,8 @@ struct Options {
   const CLI::App* app = nullptr;
 };
 
-struct BandInfo {
-  const char* name;
-  Grid<float> ExposureBands::*grid;
-  const char* unit;
-  const char* definition;
-};
-constexpr BandInfo kBands[] = {
-    {"total", &ExposureBands::total, "kWh m-2", "direct + diffuse + reflected on the cell's tilted surface"},
-    {"direct", &ExposureBands::direct, "kWh m-2", "the sun's beam on the cell's tilted surface (Horn normal)"},
-    {"diffuse", &ExposureBands::diffuse, "kWh m-2", "the sky without the sun, through the parts the cell sees"},
-    {"reflected", &ExposureBands::reflected, "kWh m-2",
-     "isotropic reflection: albedo x unobstructed global horizontal x (1 - svf of the tilted surface)"},
-    {"horizontal_total", &ExposureBands::horizontal_total, "kWh m-2",
-     "direct + diffuse + reflected on a horizontal surface at the cell (a pyranometer)"},
-    {"svf", &ExposureBands::svf, "1", "sky-view factor, 1 - mean sin^2(max(h,0)); cosine-weighted, horizontal"},
-};
-constexpr int kBandCount = static_cast<int>(std::size(kBands));
+const std::vector<ExposureBandInfo>& kBands = exposure_band_info();
+const int kBandCount = static_cast<int>(kBands.size());
 
 // The run tile by tile (docs/tiling.md): each tile's window plus halo through compute_exposure with
 // the tile's own cells as its window, those cells written at the tile's place. The sky is the whole
@@ -74,7 +59,7 @@ TileSummary run_tiled_exposure(HorizonJob& job, const Options& o, const Exposure
           }
           const ExposureBands bands = compute_exposure(*job.engine, part, inner, sky, tile_request, progress);
           for (int b = 0; b < kBandCount; ++b) {
-            const BandInfo& info = kBands[b];
+            const ExposureBandInfo& info = kBands[b];
             out.write_window(b, col0, row0, inner.cols, inner.rows, (bands.*info.grid).data());
             out.describe(b, {info.name, info.unit, nullptr, {{"DEFINITION", info.definition}}});
           }
@@ -113,7 +98,7 @@ int run(Options& o) {
   er.albedo = parse_exposure_albedo(o.albedo);
   const ExposureAlbedo& albedo = er.albedo;
   std::vector<std::string> band_names;
-  for (const BandInfo& b : kBands) band_names.push_back(b.name);
+  for (const ExposureBandInfo& b : kBands) band_names.push_back(b.name);
   const std::size_t drawn = check_preview_options(*o.app, o.preview, band_names);
   check_outputs_apart({o.job.output, o.preview.path}, {o.job.input, o.skymap, o.sky.epw, albedo.raster});
 
@@ -190,11 +175,11 @@ int run(Options& o) {
   wo.metadata = meta;
   for (const auto& [k, v] : tiling_metadata(job.tiles)) wo.metadata[k] = v;
   std::vector<OutputBand> out;
-  for (const BandInfo& b : kBands)
+  for (const ExposureBandInfo& b : kBands)
     out.push_back({b.name, b.unit, (bands.*b.grid).data(), {{"DEFINITION", b.definition}}});
   write_bands(o.job.output, width, height, t.georef, out, wo);
   {
-    const BandInfo& b = kBands[drawn];
+    const ExposureBandInfo& b = kBands[drawn];
     write_preview(o.preview, bands.*b.grid, {b.name, b.unit, o.job.output, t.georef, {}, {}}, o.job.out.overwrite);
   }
   double sum = 0.0;

@@ -4,16 +4,19 @@ Each tile is computed with ``dask.array.map_overlap`` on the tile and a halo of 
 ``radius`` metres (the library's own ``halo_cells``), placed in the whole raster (its ground frame,
 edges, direction set and seeds), so every cell gets the value the single call
 :func:`skyview.svf` gives it. An unlimited radius (the sweep's default) would need the whole raster
-in every tile, and ``max_error`` chooses its own radius: both are refused here.
+in every tile, and ``max_error`` chooses its own radius: both are refused here. Each tile's heights
+are stored relative to the whole raster's base height (one pass over the heights finds it), so the
+results are bit-identical to the single call's.
 """
 import numpy as np
 import dask.array as da
 
 from . import Error, _skyview
+from . import exposure as _exposure
 from . import horizon as _horizon
 from . import svf as _svf
 
-__all__ = ["halo", "svf", "horizon"]
+__all__ = ["halo", "svf", "horizon", "exposure"]
 
 _NO_RADIUS = (
     "skyview.dask needs radius= (metres): the halo each tile carries is the search radius, and an unlimited "
@@ -55,6 +58,18 @@ def _check(z, options):
     return z
 
 
+def _height_range(z, nodata):
+    """The lowest and highest valid heights of the whole array (one pass over it, now): each tile's heights are
+    stored relative to the raster's base height, their midpoint, so that tiles hold the single call's floats."""
+    valid = z.astype(np.float64)
+    if nodata is not None:
+        valid = da.where(valid == nodata, np.nan, valid)
+    lo, hi = da.compute(da.nanmin(valid), da.nanmax(valid))
+    if not (np.isfinite(lo) and np.isfinite(hi)):
+        return None  # nothing valid (or infinite): the tiles' own calls say what is wrong
+    return float(lo), float(hi)
+
+
 def _all_nodata(block, nodata):
     invalid = np.isnan(block) if block.dtype.kind == "f" else np.zeros(block.shape, bool)
     if nodata is not None:
@@ -62,7 +77,7 @@ def _all_nodata(block, nodata):
     return bool(invalid.all())
 
 
-def _svf_tile(block, block_info=None, *, options, bands, depth_, full):
+def _svf_tile(block, block_info=None, *, options, bands, depth_, full, heights):
     """One tile of svf(): the block and its halo, placed in the raster; its bands as one record array."""
     record = np.dtype([(name, "<f4") for name in bands])
     out = np.empty(block.shape, record)
@@ -71,13 +86,13 @@ def _svf_tile(block, block_info=None, *, options, bands, depth_, full):
             out[name] = np.nan
         return out
     row0, col0 = _padded_origin(block_info, depth_)
-    values = _svf(block, _tile=(col0, row0) + full, **options)
+    values = _svf(block, _tile=(col0, row0) + full, _height_range=heights, **options)
     for name in bands:
         out[name] = values[name]
     return out
 
 
-def _horizon_tile(block, block_info=None, *, options, directions, depth_, full):
+def _horizon_tile(block, block_info=None, *, options, directions, depth_, full, heights):
     """One tile of horizon(): its angles as records of `directions` floats, (rows, cols, directions)."""
     record = np.dtype([("angles", "<f4", (directions,))])
     out = np.empty(block.shape, record)
@@ -85,13 +100,31 @@ def _horizon_tile(block, block_info=None, *, options, directions, depth_, full):
         out["angles"] = np.nan
         return out
     row0, col0 = _padded_origin(block_info, depth_)
-    angles, _ = _horizon(block, _tile=(col0, row0) + full, **options)
+    angles, _ = _horizon(block, _tile=(col0, row0) + full, _height_range=heights, **options)
     out["angles"] = np.moveaxis(angles, 0, -1)
     return out
 
 
 def _directions_first(records):
     return np.moveaxis(records["angles"], -1, 0)
+
+
+def _exposure_tile(block, albedo=None, block_info=None, *, options, depth_, full, heights):
+    """One tile of exposure(): the block (and its albedo cells) with its halo; its bands as one record array."""
+    bands = _skyview._exposure_band_names()
+    record = np.dtype([(name, "<f4") for name in bands])
+    out = np.empty(block.shape, record)
+    if block_info is None or _all_nodata(block, options.get("nodata")):
+        for name in bands:
+            out[name] = np.nan
+        return out
+    row0, col0 = _padded_origin(block_info, depth_)
+    if albedo is not None:
+        options = dict(options, albedo=albedo)
+    values = _exposure(block, _tile=(col0, row0) + full, _height_range=heights, **options).bands
+    for name in bands:
+        out[name] = values[name]
+    return out
 
 
 # The tiles' functions are module-level (pickled by reference, not by value: the module's builtin
@@ -108,7 +141,8 @@ def svf(z, **options):
     record = np.dtype([(name, "<f4") for name in bands])
     full = (int(z.shape[1]), int(z.shape[0]))
     records = da.map_overlap(_svf_tile, z, depth=depth, boundary="none", dtype=record,
-                             meta=np.empty((0, 0), record), options=options, bands=bands, depth_=depth, full=full)
+                             meta=np.empty((0, 0), record), options=options, bands=bands, depth_=depth, full=full,
+                             heights=_height_range(z, options.get("nodata")))
     return {name: records[name] for name in bands}
 
 
@@ -130,6 +164,38 @@ def horizon(z, **options):
     n = len(azimuths)
     record = np.dtype([("angles", "<f4", (n,))])
     records = da.map_overlap(_horizon_tile, z, depth=depth, boundary="none", dtype=record,
-                             meta=np.empty((0, 0), record), options=options, directions=n, depth_=depth, full=full)
+                             meta=np.empty((0, 0), record), options=options, directions=n, depth_=depth, full=full,
+                             heights=_height_range(z, options.get("nodata")))
     angles = records.map_blocks(_directions_first, dtype=np.float32, new_axis=0, chunks=((n,),) + records.chunks)
     return angles, azimuths
+
+
+def exposure(z, **options):
+    """skyview.exposure over a dask array: {band name: dask array}, equal to the single call with the same sky.
+
+    Keywords as for :func:`skyview.exposure`; radius and skymap (a :class:`skyview.SkyMap` or a map file) are
+    required: the sky is made once, not in every tile. albedo may be a number or an array of z's shape (NumPy
+    or dask), which is cut into the same tiles. The run's metadata are those of the single call.
+    """
+    z = _check(z, options)
+    if options.get("skymap") is None:
+        raise Error("skyview.dask.exposure needs skymap= (skyview.skymap(...) or a map file): the sky is made once "
+                    "for the whole raster, not in every tile")
+    depth = halo(z.shape, options["radius"], cell_size=options.get("cell_size"),
+                 transform=options.get("transform"), crs=options.get("crs"))
+    full = (int(z.shape[1]), int(z.shape[0]))
+    bands = _skyview._exposure_band_names()
+    record = np.dtype([(name, "<f4") for name in bands])
+    arrays = [z]
+    albedo = options.get("albedo")
+    if albedo is not None and not isinstance(albedo, str) and np.ndim(albedo) > 0:
+        albedo = da.asarray(albedo)
+        if albedo.shape != z.shape:
+            raise Error(f"the albedo array is {albedo.shape[0]} x {albedo.shape[1]} cells (rows x columns) where the "
+                        f"heights are {z.shape[0]} x {z.shape[1]}")
+        arrays.append(albedo.rechunk(z.chunks))
+        options = {k: v for k, v in options.items() if k != "albedo"}
+    records = da.map_overlap(_exposure_tile, *arrays, depth=depth, boundary="none", dtype=record,
+                             meta=np.empty((0, 0), record), options=options, depth_=depth, full=full,
+                             heights=_height_range(z, options.get("nodata")), align_arrays=False)
+    return {name: records[name] for name in bands}

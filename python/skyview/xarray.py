@@ -8,10 +8,11 @@ import numpy as np
 import xarray as xr
 
 from . import Error
+from . import exposure as _exposure
 from . import horizon as _horizon
 from . import svf as _svf
 
-__all__ = ["georeference", "svf", "horizon"]
+__all__ = ["georeference", "svf", "horizon", "exposure"]
 
 
 def _yx(da):
@@ -95,3 +96,20 @@ def horizon(da, **options):
     coords = {"azimuth": ("azimuth", azimuths, {"units": "degree"}), **_coords(da)}
     attrs = {"units": "degree", "long_name": "horizon elevation angle", **_attrs(da, crs)}
     return xr.DataArray(angles, coords=coords, dims=("azimuth",) + da.dims, name="horizon", attrs=attrs)
+
+
+def exposure(da, **options):
+    """skyview.exposure on a DataArray: a Dataset of its bands (total, direct, ..., svf) on the same coordinates,
+    with the run's metadata (site, period, albedo, ...) as the Dataset's attributes. An albedo DataArray is taken
+    as its values (it must lie on the same grid)."""
+    da = _yx(da)
+    transform, crs = georeference(da)
+    options.setdefault("nodata", _nodata(da))
+    albedo = options.get("albedo")
+    if isinstance(albedo, xr.DataArray):
+        options["albedo"] = _yx(albedo).values
+    result = _exposure(da.values, transform=transform, crs=crs, **options)
+    variables = {name: xr.DataArray(values, coords=_coords(da), dims=da.dims,
+                                    attrs={"units": "1" if name == "svf" else "kWh m-2"})
+                 for name, values in result.bands.items()}
+    return xr.Dataset(variables, attrs={**result.metadata, **_attrs(da, crs)})

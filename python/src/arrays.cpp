@@ -53,6 +53,7 @@ Terrain terrain_from_array(const py::handle& z, const ArrayGeoreference& where, 
   // base height in the Terrain, so a float32 array cannot be shared.
   const auto heights = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(array);
   h.values.assign(heights.data(), heights.data() + heights.size());
+  if (where.height_range) h.raster_height_range = std::make_pair((*where.height_range)[0], (*where.height_range)[1]);
   if (where.nodata) {
     h.has_nodata = true;
     h.nodata = *where.nodata;

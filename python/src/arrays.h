@@ -29,6 +29,9 @@ struct ArrayGeoreference {
   // placed share the raster's ground frame, edges, direction set and seeds (terrain.h), so that
   // their cells get the whole raster's values wherever the halo holds their search radius.
   std::optional<std::array<int, 4>> tile;
+  // With `tile`: the whole raster's lowest and highest valid heights (in z's unit), so that the
+  // tile's heights are stored relative to the raster's base height and give its very bits.
+  std::optional<std::array<double, 2>> height_range;
 };
 
 // Throws skyview::Error (one line) for an array that is not 2-D, of a type that holds no heights

@@ -5,6 +5,8 @@
 
 #include "arrays.h"
 #include "bindings.h"
+#include "horizon_keywords.h"
+#include "progress_callback.h"
 #include "skyview/core/error.h"
 
 #include "skyview/sky_view/horizon_bands.h"
@@ -13,61 +15,6 @@
 namespace skyview::python {
 
 namespace {
-
-// The horizon options as the Python functions take them: None leaves the command line's default
-// and, like an option not typed, is not "given" (an option the run would not use is refused only
-// where given).
-struct HorizonKeywords {
-  std::optional<std::string> method;
-  std::optional<int> directions, samples, far_lines, rays;
-  std::optional<double> radius, refraction, max_error;
-  std::optional<std::uint64_t> seed;
-  std::optional<std::string> edge, curvature, azimuth_origin, azimuths;
-  bool early_exit = true;
-};
-
-template <class T>
-void set(HorizonRequest& r, const std::optional<T>& value, T& field, const char* option) {
-  if (!value) return;
-  field = *value;
-  r.given.insert(option);
-}
-
-void check_member(const std::optional<std::string>& value, const char* name, std::initializer_list<const char*> ok) {
-  if (!value) return;
-  std::string list;
-  for (const char* o : ok) {
-    if (*value == o) return;
-    list += list.empty() ? o : std::string(", ") + o;
-  }
-  throw UsageError(std::string(name) + " '" + *value + "' is not one of " + list);
-}
-
-void apply(HorizonRequest& r, const HorizonKeywords& k) {
-  // The checks CLI11 makes on these options before the library sees them.
-  check_member(k.edge, "edge", {"open", "nodata"});
-  check_member(k.curvature, "curvature", {"auto", "on", "off"});
-  check_member(k.azimuth_origin, "azimuth_origin", {"north", "grid"});
-  check_member(k.azimuths, "azimuths", {"uniform", "grid-lines"});
-  if (k.far_lines && *k.far_lines != 1 && *k.far_lines != 2) throw UsageError("far_lines must be 1 or 2");
-  if (k.radius && !(std::isfinite(*k.radius) && *k.radius > 0)) throw UsageError("radius must be a positive number");
-  if (k.refraction && !std::isfinite(*k.refraction)) throw UsageError("refraction must be a finite number");
-  if (k.max_error && !(*k.max_error > 0.0 && *k.max_error <= 1.0)) throw UsageError("max_error must be in (0, 1]");
-  set(r, k.method, r.method, "--method");
-  set(r, k.directions, r.params.directions, "--directions");
-  set(r, k.samples, r.params.samples, "--samples");
-  set(r, k.far_lines, r.params.far_lines, "--far-lines");
-  set(r, k.radius, r.params.radius, "--radius");
-  set(r, k.rays, r.params.rays, "--rays");
-  set(r, k.seed, r.params.seed, "--seed");
-  set(r, k.refraction, r.params.refraction, "--refraction");
-  set(r, k.azimuth_origin, r.azimuth_origin, "--azimuth-origin");
-  set(r, k.azimuths, r.azimuths, "--azimuths");
-  if (k.edge) r.edge = *k.edge;
-  if (k.curvature) r.params.curvature = *k.curvature;
-  if (k.max_error) r.max_error = *k.max_error;
-  r.params.early_exit = k.early_exit;
-}
 
 // "svf,sky_visibility" or ["svf", "sky_visibility"].
 std::string product_list(const py::object& products) {
@@ -78,7 +25,7 @@ std::string product_list(const py::object& products) {
 }
 
 py::dict svf(const py::object& z, const ArrayGeoreference& where, const HorizonKeywords& k, const py::object& products,
-             std::optional<int> check_cells, int threads) {
+             std::optional<int> check_cells, int threads, const py::object& progress) {
   std::vector<std::string> warnings;
   SvfRequest request;
   apply(request.horizon, k);
@@ -91,14 +38,12 @@ py::dict svf(const py::object& z, const ArrayGeoreference& where, const HorizonK
   const Terrain terrain = terrain_from_array(z, where, warnings);
   fit_horizon(setup, request.horizon, terrain);
   SvfResult result;
-  {
-    py::gil_scoped_release computing;
+  run_with_progress(progress, [&](ProgressCounter& counter) {
     const ThreadLimit limit(threads);
-    result = run_svf(terrain, request, setup, [&](const std::function<void(ProgressCounter&)>& work) {
-      ProgressCounter progress;
-      work(progress);
-    });
-  }
+    counter.set_total(static_cast<std::uint64_t>(terrain.width()) * terrain.height());
+    result =
+        run_svf(terrain, request, setup, [&](const std::function<void(ProgressCounter&)>& work) { work(counter); });
+  });
   warnings.insert(warnings.end(), setup.warnings.begin(), setup.warnings.end());
   warnings.insert(warnings.end(), result.warnings.begin(), result.warnings.end());
   warn_all(warnings);
@@ -109,7 +54,8 @@ py::dict svf(const py::object& z, const ArrayGeoreference& where, const HorizonK
   return bands;
 }
 
-py::tuple horizon(const py::object& z, const ArrayGeoreference& where, const HorizonKeywords& k, int threads) {
+py::tuple horizon(const py::object& z, const ArrayGeoreference& where, const HorizonKeywords& k, int threads,
+                  const py::object& callback) {
   std::vector<std::string> warnings;
   HorizonRequest request;
   apply(request, k);
@@ -121,8 +67,7 @@ py::tuple horizon(const py::object& z, const ArrayGeoreference& where, const Hor
   const Window whole = Window::whole(terrain);
   const std::size_t cells = static_cast<std::size_t>(whole.cells());
   std::vector<float> angles(cells * static_cast<std::size_t>(n));
-  {
-    py::gil_scoped_release computing;
+  run_with_progress(callback, [&](ProgressCounter& progress) {
     const ThreadLimit limit(threads);
     std::int64_t edge_cells = 0;
     const std::vector<unsigned char> blank = horizon_blank_cells(setup, terrain, Window::whole(terrain), edge_cells);
@@ -135,7 +80,7 @@ py::tuple horizon(const py::object& z, const ArrayGeoreference& where, const Hor
             blank[first + i] ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(radians[i] * 180.0 / M_PI);
       }
     };
-    ProgressCounter progress;
+    progress.set_total(cells);
     if (setup.engine->streams_directions()) {
       HorizonField rest;
       setup.engine->compute_directions(terrain, whole, rest, progress,
@@ -149,7 +94,7 @@ py::tuple horizon(const py::object& z, const ArrayGeoreference& where, const Hor
                               for (int k = 0; k < n; ++k) take_rows(k, block.row0, block.rows, field.upper_plane(k));
                             });
     }
-  }
+  });
   warnings.insert(warnings.end(), setup.warnings.begin(), setup.warnings.end());
   warn_all(warnings);
   std::vector<double> azimuths;
@@ -159,8 +104,9 @@ py::tuple horizon(const py::object& z, const ArrayGeoreference& where, const Hor
 
 ArrayGeoreference georeference(std::optional<double> cell_size, std::optional<std::vector<double>> transform,
                                std::optional<std::string> crs, std::optional<double> nodata,
-                               std::optional<double> z_scale, std::optional<std::array<int, 4>> tile) {
-  return {cell_size, std::move(transform), std::move(crs), nodata, z_scale, tile};
+                               std::optional<double> z_scale, std::optional<std::array<int, 4>> tile,
+                               std::optional<std::array<double, 2>> height_range = std::nullopt) {
+  return {cell_size, std::move(transform), std::move(crs), nodata, z_scale, tile, height_range};
 }
 
 // The bands svf() returns for these options, in order.
@@ -234,18 +180,21 @@ void bind_horizon_functions(py::module_& m) {
          std::optional<std::string> curvature, std::optional<double> refraction,
          std::optional<std::string> azimuth_origin, std::optional<std::string> azimuths, bool early_exit,
          std::optional<int> check_cells, std::optional<double> z_scale, int threads,
-         std::optional<std::array<int, 4>> tile) {
+         std::optional<std::array<int, 4>> tile, std::optional<std::array<double, 2>> height_range,
+         const py::object& progress) {
         const HorizonKeywords k{method,    directions, samples, far_lines, rays,           radius,   refraction,
                                 max_error, seed,       edge,    curvature, azimuth_origin, azimuths, early_exit};
-        return svf(z, georeference(cell_size, std::move(transform), std::move(crs), nodata, z_scale, tile), k, products,
-                   check_cells, threads);
+        return svf(z,
+                   georeference(cell_size, std::move(transform), std::move(crs), nodata, z_scale, tile, height_range),
+                   k, products, check_cells, threads, progress);
       },
       kSvfDoc, "z"_a, py::kw_only(), "cell_size"_a = py::none(), "transform"_a = py::none(), "crs"_a = py::none(),
       "directions"_a = py::none(), "method"_a = py::none(), "radius"_a = py::none(), "samples"_a = py::none(),
       "products"_a = py::none(), "nodata"_a = py::none(), "max_error"_a = py::none(), "far_lines"_a = py::none(),
       "rays"_a = py::none(), "seed"_a = py::none(), "edge"_a = py::none(), "curvature"_a = py::none(),
       "refraction"_a = py::none(), "azimuth_origin"_a = py::none(), "azimuths"_a = py::none(), "early_exit"_a = true,
-      "check_cells"_a = py::none(), "z_scale"_a = py::none(), "threads"_a = 0, "_tile"_a = py::none());
+      "check_cells"_a = py::none(), "z_scale"_a = py::none(), "threads"_a = 0, "_tile"_a = py::none(),
+      "_height_range"_a = py::none(), "progress"_a = py::none());
   m.def(
       "horizon",
       [](const py::object& z, std::optional<double> cell_size, std::optional<std::vector<double>> transform,
@@ -254,18 +203,20 @@ void bind_horizon_functions(py::module_& m) {
          std::optional<double> max_error, std::optional<int> far_lines, std::optional<std::uint64_t> seed,
          std::optional<std::string> edge, std::optional<std::string> curvature, std::optional<double> refraction,
          std::optional<std::string> azimuth_origin, std::optional<std::string> azimuths, bool early_exit,
-         std::optional<double> z_scale, int threads, std::optional<std::array<int, 4>> tile) {
+         std::optional<double> z_scale, int threads, std::optional<std::array<int, 4>> tile,
+         std::optional<std::array<double, 2>> height_range, const py::object& progress) {
         const HorizonKeywords k{method,    directions, samples, far_lines, std::nullopt,   radius,   refraction,
                                 max_error, seed,       edge,    curvature, azimuth_origin, azimuths, early_exit};
-        return horizon(z, georeference(cell_size, std::move(transform), std::move(crs), nodata, z_scale, tile), k,
-                       threads);
+        return horizon(
+            z, georeference(cell_size, std::move(transform), std::move(crs), nodata, z_scale, tile, height_range), k,
+            threads, progress);
       },
       kHorizonDoc, "z"_a, py::kw_only(), "cell_size"_a = py::none(), "transform"_a = py::none(), "crs"_a = py::none(),
       "directions"_a = py::none(), "method"_a = py::none(), "radius"_a = py::none(), "samples"_a = py::none(),
       "nodata"_a = py::none(), "max_error"_a = py::none(), "far_lines"_a = py::none(), "seed"_a = py::none(),
       "edge"_a = py::none(), "curvature"_a = py::none(), "refraction"_a = py::none(), "azimuth_origin"_a = py::none(),
       "azimuths"_a = py::none(), "early_exit"_a = true, "z_scale"_a = py::none(), "threads"_a = 0,
-      "_tile"_a = py::none());
+      "_tile"_a = py::none(), "_height_range"_a = py::none(), "progress"_a = py::none());
   m.def("_svf_band_names", svf_band_names, "products"_a, "method"_a, "rays"_a);
   m.def("_halo_cells", raster_halo_cells, "rows"_a, "cols"_a, "radius"_a, "cell_size"_a, "transform"_a, "crs"_a);
 }

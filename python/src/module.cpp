@@ -6,7 +6,7 @@
 #include "skyview/raster/raster_read.h"
 
 PYBIND11_MODULE(_skyview, m) {
-  m.doc() = "skyview's library on NumPy arrays: svf, horizon, sun_position, skymap, read_las";
+  m.doc() = "skyview's library on NumPy arrays: svf, horizon, exposure, sun_position, skymap, read_las";
   // One exception for every failure the command line reports in one line, a ValueError: the
   // caller's values (options, heights, files) are what is wrong.
   static pybind11::exception<skyview::Error> error(m, "Error", PyExc_ValueError);
@@ -23,4 +23,5 @@ PYBIND11_MODULE(_skyview, m) {
   skyview::python::bind_solar_functions(m);
   skyview::python::bind_sky_functions(m);
   skyview::python::bind_las_functions(m);
+  skyview::python::bind_exposure_functions(m);
 }

@@ -45,6 +45,20 @@ void check_sites(const ExposureJobRequest& r, const GeoPoint& centre, const GeoP
 
 }  // namespace
 
+const std::vector<ExposureBandInfo>& exposure_band_info() {
+  static const std::vector<ExposureBandInfo> bands{
+      {"total", &ExposureBands::total, "kWh m-2", "direct + diffuse + reflected on the cell's tilted surface"},
+      {"direct", &ExposureBands::direct, "kWh m-2", "the sun's beam on the cell's tilted surface (Horn normal)"},
+      {"diffuse", &ExposureBands::diffuse, "kWh m-2", "the sky without the sun, through the parts the cell sees"},
+      {"reflected", &ExposureBands::reflected, "kWh m-2",
+       "isotropic reflection: albedo x unobstructed global horizontal x (1 - svf of the tilted surface)"},
+      {"horizontal_total", &ExposureBands::horizontal_total, "kWh m-2",
+       "direct + diffuse + reflected on a horizontal surface at the cell (a pyranometer)"},
+      {"svf", &ExposureBands::svf, "1", "sky-view factor, 1 - mean sin^2(max(h,0)); cosine-weighted, horizontal"},
+  };
+  return bands;
+}
+
 ExposureAlbedo parse_exposure_albedo(const std::string& text) {
   ExposureAlbedo a;
   if (text.empty()) return a;
@@ -141,6 +155,10 @@ ExposureJob prepare_exposure_job(const ExposureJobRequest& r, const ExposureRast
       }
     }
   } else {
+    if (t.origin_col > width / 2 || t.origin_row > height / 2 || t.origin_col + t.width() <= width / 2 ||
+        t.origin_row + t.height() <= height / 2) {
+      throw Error("a sky for a tile of a raster needs the raster's centre cell: make it once and give the map");
+    }
     if (!centre && !r.sky.latitude && r.sky.epw.empty()) {
       throw Error(raster.name + " has no CRS to place the sun: give --lat and --lon");
     }
@@ -197,10 +215,10 @@ ExposureJob prepare_exposure_job(const ExposureJobRequest& r, const ExposureRast
     request.albedo = *albedo.value;
     albedo_source = "--albedo";
   } else if (albedo.cells) {
-    if (albedo.cells->width() != width || albedo.cells->height() != height) {
+    if (albedo.cells->width() != t.width() || albedo.cells->height() != t.height()) {
       throw UsageError("the albedo array is " + std::to_string(albedo.cells->height()) + " x " +
                        std::to_string(albedo.cells->width()) + " cells (rows x columns) where the heights are " +
-                       std::to_string(height) + " x " + std::to_string(width));
+                       std::to_string(t.height()) + " x " + std::to_string(t.width()));
     }
     request.albedo_grid = checked_albedo(Grid<float>(*albedo.cells), "the albedo array");
     albedo_source = "an array";

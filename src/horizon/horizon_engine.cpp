@@ -101,6 +101,7 @@ void compute_by_row_blocks(const HorizonEngine& engine, const Terrain& terrain, 
   const std::size_t rows = std::max<std::size_t>(1, fit / multiple) * multiple;
   const int block_rows = static_cast<int>(std::min<std::size_t>(rows, static_cast<std::size_t>(window.rows)));
   for (int r0 = 0; r0 < window.rows; r0 += block_rows) {
+    progress.stop_if_cancelled();
     const Window block{window.col0, window.row0 + r0, window.cols, std::min(block_rows, window.rows - r0)};
     HorizonField field;
     engine.compute(terrain, block, field, progress);

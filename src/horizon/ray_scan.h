@@ -247,6 +247,7 @@ void scan_rays(const Terrain& terrain, const Window& window, HorizonField& out, 
   const RayScanner<Placement> scanner(terrain, s, placement, out);
   tbb::parallel_for(tbb::blocked_range<int>(0, window.rows), [&](const tbb::blocked_range<int>& range) {
     for (int wr = range.begin(); wr != range.end(); ++wr) {
+      progress.stop_if_cancelled();
       const int row = window.row0 + wr;
       for (int wc = 0; wc < window.cols; ++wc) {
         const int col = window.col0 + wc;

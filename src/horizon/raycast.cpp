@@ -357,6 +357,7 @@ class RaycastEngine final : public HorizonEngine {
     for (int k = 0; k < n; ++k) reach_k[k] = upper.reach(sin_k[k], cos_k[k], range);
     tbb::parallel_for(tbb::blocked_range<int>(0, window.rows), [&](const tbb::blocked_range<int>& rows) {
       for (int wr = rows.begin(); wr != rows.end(); ++wr) {
+        progress.stop_if_cancelled();
         const int row = window.row0 + wr;
         for (int wc = 0; wc < window.cols; ++wc) {
           const int col = window.col0 + wc;

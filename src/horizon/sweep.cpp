@@ -55,8 +55,10 @@ class SweepEngine final : public HorizonEngine {
  public:
   explicit SweepEngine(const HorizonParams& p) : p_(p) {
     if (p_.samples == 0) p_.samples = 64;
-    if (p_.samples < 1 || p_.samples > 4096) throw UsageError("--samples (exact near steps) must be 1 to 4096 for sweep");
-    if (p_.radius < 0.0 || !std::isfinite(p_.radius)) throw UsageError("--radius must be positive (or 0 for unlimited)");
+    if (p_.samples < 1 || p_.samples > 4096)
+      throw UsageError("--samples (exact near steps) must be 1 to 4096 for sweep");
+    if (p_.radius < 0.0 || !std::isfinite(p_.radius))
+      throw UsageError("--radius must be positive (or 0 for unlimited)");
     if (p_.far_lines != 1 && p_.far_lines != 2) throw UsageError("--far-lines must be 1 or 2 for sweep");
   }
   std::string_view name() const override { return "sweep"; }
@@ -93,6 +95,7 @@ class SweepEngine final : public HorizonEngine {
     const Inputs in = inputs(terrain, out);
     BandScratches scratches;
     tbb::parallel_for(0, p_.directions, [&](int k) {
+      progress.stop_if_cancelled();
       sweep(terrain, in, window, k, scratches, out.upper_plane(k), p_.lower ? out.lower_plane(k) : nullptr);
       progress.advance(direction_share(window.cells(), k));
     });
@@ -125,6 +128,9 @@ class SweepEngine final : public HorizonEngine {
     std::atomic<int> started{0};
     BandScratches scratches;
     tbb::parallel_for(0, p_.directions, [&](int) {
+      // Before a direction is taken: every direction taken is finished and handed over, so no
+      // worker waits for one that a cancelled worker left.
+      progress.stop_if_cancelled();
       const int k = started++;
       Planes planes;
       {

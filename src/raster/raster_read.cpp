@@ -88,7 +88,9 @@ Terrain terrain_from_heights(HeightValues&& h, const ReadOptions& options, ReadR
   rep.height_unit = h.height_unit;
 
   Terrain t;
-  t.base_height = 0.5 * (scan.lo + scan.hi);
+  t.base_height = h.raster_height_range
+                      ? 0.5 * (h.raster_height_range->first * h.metres + h.raster_height_range->second * h.metres)
+                      : 0.5 * (scan.lo + scan.hi);
   t.heights = Grid<float>(width, height);
   for (std::size_t i = 0; i < values.size(); ++i) t.heights.values()[i] = static_cast<float>(values[i] - t.base_height);
   t.georef = std::move(h.georef);

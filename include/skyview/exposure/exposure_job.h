@@ -20,8 +20,18 @@
 
 namespace skyview {
 
+// A band of the output: its name, the grid of ExposureBands it holds, its unit and definition.
+struct ExposureBandInfo {
+  const char* name;
+  Grid<float> ExposureBands::*grid;
+  const char* unit;
+  const char* definition;
+};
+// total, direct, diffuse, reflected, horizontal_total, svf: the output's bands in order.
+const std::vector<ExposureBandInfo>& exposure_band_info();
+
 // --albedo: one number everywhere, a raster on the DSM's grid, or cells given in memory (the
-// window's size); none of them: the EPW's albedo field, else ExposureRequest's default.
+// Terrain buffer's size, all of it computed); none of them: the EPW's albedo field, else ExposureRequest's default.
 struct ExposureAlbedo {
   std::optional<double> value;
   std::string raster;

@@ -1,7 +1,9 @@
 #pragma once
 // Reading height rasters and result bands from any GDAL format.
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "skyview/core/grid.h"
@@ -62,6 +64,10 @@ struct HeightValues {
   GeoReference georef;
   double metres = 1.0;                          // metres per height unit
   std::string height_unit = "metres (stated)";  // what said so ("metres (assumed..." where nothing did)
+  // The lowest and highest valid heights of the whole raster these values are a piece of (in
+  // their unit, before `metres`): its base height is then the raster's, so that a piece's cells
+  // hold the same floats as the whole raster's (Python's dask tiles). Default: these values'.
+  std::optional<std::pair<double, double>> raster_height_range;
 };
 // Throws skyview::Error as read_terrain does, and for cells and heights that cannot both be
 // metres (where either's unit was assumed) or a geotransform that looks like degrees without a CRS;
