@@ -92,9 +92,10 @@ struct MaxBlocks {
 //   template <class Visit> void walk(double col, double row, double col_per_m, double row_per_m,
 //                                    double max_distance, double curvature, Visit&& visit) const;
 // calling visit(d, 1/d, curvature*d*d) for increasing distances d <= max_distance (where the track
-// leaves the raster's extent, track_box.h) along the ray from pixel position (col, row) (a cell centre, or any point for
-// point queries). visit returns a negative number to stop, or a distance r >= d: the walk goes on
-// with its first sample farther than r.
+// leaves the raster's extent, track_box.h) along the ray from pixel position (col, row) (a cell
+// centre, or any point for point queries). visit returns a negative number to stop, or a distance
+// r >= d: the walk goes on with its first sample farther than r.
+//
 // One cell's walk along every direction, with what all cells share (the direction set, the
 // raster's extremes, the pyramid) built once.
 template <class Placement>
