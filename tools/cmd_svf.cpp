@@ -16,6 +16,16 @@
 namespace skyview::cli {
 namespace {
 
+// The far field on the summary line: where it starts and the svf error it may cause.
+std::string far_field_text(const HorizonJob& job) {
+  if (!job.far_field) return "";
+  if (job.metadata.at("FAR_FIELD").starts_with("none")) return ", the halo holds the whole raster: exact";
+  char text[96];
+  std::snprintf(text, sizeof text, ", far field beyond %.4g m with svf error at most %.2g", job.far_halo_m,
+                std::stod(job.metadata.at("FAR_FIELD_BOUND_SVF")));
+  return text;
+}
+
 // The run tile by tile: each tile's window plus halo through the same run_svf as a whole run, its
 // own cells written into the output's window.
 int run_tiled_svf(const HorizonJobOptions& o, const TilingOptions& tiling, const SvfRequest& request, HorizonJob& job,
@@ -54,12 +64,9 @@ int run_tiled_svf(const HorizonJobOptions& o, const TilingOptions& tiling, const
                     std::to_string(n_bands) + " bands by " + std::string(job.engine->name()) + " with " +
                     std::to_string(job.engine->params().directions) + " directions in " +
                     std::to_string(job.tiles.tiles) + " tiles of " + std::to_string(job.tiles.tile_size) +
-                    " cells (halo " + std::to_string(job.tiles.halo) +
+                    " cells (halo " + std::to_string(job.tiles.halo) + " cells" +
                     (job.tiles.skipped > 0 ? ", " + std::to_string(job.tiles.skipped) + " already finished" : "") +
-                    (job.far_field ? ", far field beyond " + number_text(job.far_halo_m) + " m, svf bound " +
-                                         job.metadata.at("FAR_FIELD_BOUND_SVF")
-                                   : "") +
-                    "); " + total.first_band.text(total.first_band_name),
+                    far_field_text(job) + "); " + total.first_band.text(total.first_band_name),
                 o.out.quiet);
   return 0;
 }
