@@ -77,19 +77,24 @@ def _all_nodata(block, nodata):
     return bool(invalid.all())
 
 
-def _svf_tile(block, block_info=None, *, options, bands, depth_, full, heights):
-    """One tile of svf(): the block and its halo, placed in the raster; its bands as one record array."""
-    record = np.dtype([(name, "<f4") for name in bands])
-    out = np.empty(block.shape, record)
+def _banded_tile(block, block_info, options, bands, depth_, compute):
+    """A tile's bands as one record array: NaN for a tile of nodata, else compute(block, tile origin)."""
+    out = np.empty(block.shape, np.dtype([(name, "<f4") for name in bands]))
     if block_info is None or _all_nodata(block, options.get("nodata")):
         for name in bands:
             out[name] = np.nan
         return out
-    row0, col0 = _padded_origin(block_info, depth_)
-    values = _svf(block, _tile=(col0, row0) + full, _height_range=heights, **options)
+    values = compute(_padded_origin(block_info, depth_))
     for name in bands:
         out[name] = values[name]
     return out
+
+
+def _svf_tile(block, block_info=None, *, options, bands, depth_, full, heights):
+    """One tile of svf(): the block and its halo, placed in the raster; its bands as one record array."""
+    return _banded_tile(
+        block, block_info, options, bands, depth_,
+        lambda origin: _svf(block, _tile=(origin[1], origin[0]) + full, _height_range=heights, **options))
 
 
 def _horizon_tile(block, block_info=None, *, options, directions, depth_, full, heights):
@@ -111,20 +116,11 @@ def _directions_first(records):
 
 def _exposure_tile(block, albedo=None, block_info=None, *, options, depth_, full, heights):
     """One tile of exposure(): the block (and its albedo cells) with its halo; its bands as one record array."""
-    bands = _skyview._exposure_band_names()
-    record = np.dtype([(name, "<f4") for name in bands])
-    out = np.empty(block.shape, record)
-    if block_info is None or _all_nodata(block, options.get("nodata")):
-        for name in bands:
-            out[name] = np.nan
-        return out
-    row0, col0 = _padded_origin(block_info, depth_)
     if albedo is not None:
         options = dict(options, albedo=albedo)
-    values = _exposure(block, _tile=(col0, row0) + full, _height_range=heights, **options).bands
-    for name in bands:
-        out[name] = values[name]
-    return out
+    return _banded_tile(
+        block, block_info, options, _skyview._exposure_band_names(), depth_,
+        lambda origin: _exposure(block, _tile=(origin[1], origin[0]) + full, _height_range=heights, **options).bands)
 
 
 # The tiles' functions are module-level (pickled by reference, not by value: the module's builtin
