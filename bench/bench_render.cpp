@@ -17,6 +17,8 @@
 #include "skyview/sky/sky_models.h"
 #include "skyview/synthetic/synthetic.h"
 
+#include "render_bench_scenes.h"
+
 namespace {
 
 using namespace skyview;
@@ -50,19 +52,8 @@ Bench* bench(int which) {
   auto it = made.find(which);
   if (it != made.end()) return it->second.get();
   auto b = std::make_unique<Bench>();
-  std::string path;
-  if (which == 0) {
-    path = (std::filesystem::temp_directory_path() / "bench_render_city.tif").string();
-    GeoReference g = local_grid(401, 401, 1.0);
-    WriteOptions wo;
-    wo.overwrite = true;
-    write_terrain(path, rasterize(synthetic_city(1), 401, 401, g), wo);
-  } else {
-    // SKYVIEW_SHARED_DIR in the environment overrides the build's (a worktree's ../shared is elsewhere).
-    const char* shared = std::getenv("SKYVIEW_SHARED_DIR");
-    path = std::string(shared ? shared : SKYVIEW_SHARED_DIR) + "/sample_data/city3d/berlin_sample.citygml";
-    if (!std::filesystem::exists(path)) return nullptr;
-  }
+  const std::string path = render_bench_scene(which, "bench_render");
+  if (path.empty()) return nullptr;
   b->scene = load_scene({path});
   b->rays = std::make_unique<RayScene>(b->scene);
   ZenithOptions zo;

@@ -15,6 +15,8 @@
 #include "skyview/render/zenith_depth_map.h"
 #include "skyview/synthetic/synthetic.h"
 
+#include "render_bench_scenes.h"
+
 namespace {
 
 using namespace skyview;
@@ -48,18 +50,8 @@ SceneMesh block(const std::string& name, Vec3f lo, Vec3f hi) {
 Change* change(int which) {
   static std::map<int, std::unique_ptr<Change>> made;
   if (auto it = made.find(which); it != made.end()) return it->second.get();
-  std::string path;
-  if (which == 0) {
-    path = (std::filesystem::temp_directory_path() / "bench_zenith_update_city.tif").string();
-    GeoReference g = local_grid(401, 401, 1.0);
-    WriteOptions wo;
-    wo.overwrite = true;
-    write_terrain(path, rasterize(synthetic_city(1), 401, 401, g), wo);
-  } else {
-    const char* shared = std::getenv("SKYVIEW_SHARED_DIR");
-    path = std::string(shared ? shared : SKYVIEW_SHARED_DIR) + "/sample_data/city3d/berlin_sample.citygml";
-    if (!std::filesystem::exists(path)) return nullptr;
-  }
+  const std::string path = render_bench_scene(which, "bench_zenith_update");
+  if (path.empty()) return nullptr;
   auto c = std::make_unique<Change>();
   const Scene before = load_scene({path});
   c->map = ZenithDepthMap::build(before, RayScene(before), options());

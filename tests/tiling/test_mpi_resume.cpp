@@ -51,7 +51,7 @@ TEST(MpiTiles, ARankKilledMidRunThenARerunGiveTheSameBitsAsOneProcess) {
   const std::string common = " --radius 30 --directions 32 --tile-size 16";
   ASSERT_EQ(run_skyview("svf " + dsm + " " + dir + "/one.vrt" + common + " --tiles-dir " + dir + "/one", dir).exit_code,
             0);
-  const std::string mpirun = "mpirun --allow-run-as-root --oversubscribe -np 2 " + std::string(SKYVIEW_EXE);
+  const std::string mpirun = mpirun_two_ranks();
   const std::string args = "svf " + dsm + " " + dir + "/two.vrt" + common + " --tiles-dir " + dir + "/two -q";
   const pid_t pid = fork();
   if (pid == 0) {
@@ -100,12 +100,7 @@ TEST(MpiTiles, FarFieldRunsGiveTheSameBitsAsOneProcess) {
   if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun is not installed";
   const std::string dir = temp_dir("mpi-far-field");
   const std::string dsm = write_small_city(dir, 240, 200);  // a far field beyond 183 m
-  const std::string common = " --directions 8 --tile-size 64 --far-field-error 0.3";
-  ASSERT_EQ(run_skyview("svf " + dsm + " " + dir + "/one.vrt" + common + " --tiles-dir " + dir + "/one", dir).exit_code,
-            0);
-  const RunResult r =
-      run_executable("mpirun --allow-run-as-root --oversubscribe -np 2 " + std::string(SKYVIEW_EXE),
-                     "svf " + dsm + " " + dir + "/two.vrt" + common + " --tiles-dir " + dir + "/two", dir);
+  const RunResult r = svf_once_and_under_mpirun(dsm, " --directions 8 --tile-size 64 --far-field-error 0.3", dir);
   if (r.exit_code != 0 && r.err.find("built without MPI") != std::string::npos)
     GTEST_SKIP() << "this build has no MPI: " << r.err;
   ASSERT_EQ(r.exit_code, 0) << r.err;

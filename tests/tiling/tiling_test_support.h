@@ -13,6 +13,22 @@
 
 namespace skyview::test {
 
+// mpirun with two ranks of this build's skyview (OpenMPI refuses root without --allow-run-as-root,
+// and CI runs as root).
+inline std::string mpirun_two_ranks() {
+  return "mpirun --allow-run-as-root --oversubscribe -np 2 " + std::string(SKYVIEW_EXE);
+}
+
+// The same svf run in one process into dir/one.vrt (tiles in dir/one), which must succeed, and
+// under mpirun into dir/two.vrt (tiles in dir/two), whose result is returned.
+inline RunResult svf_once_and_under_mpirun(const std::string& dsm, const std::string& options, const std::string& dir) {
+  const RunResult one =
+      run_skyview("svf " + dsm + " " + dir + "/one.vrt" + options + " --tiles-dir " + dir + "/one", dir);
+  EXPECT_EQ(one.exit_code, 0) << one.err;
+  return run_executable(mpirun_two_ranks(),
+                        "svf " + dsm + " " + dir + "/two.vrt" + options + " --tiles-dir " + dir + "/two", dir);
+}
+
 // A 67 x 53 city on 1 m cells with a metric CRS and a few nodata cells, written to `dir`/dsm.tif:
 // sizes that few tile sizes divide.
 inline std::string write_small_city(const std::string& dir, int width = 67, int height = 53) {
