@@ -131,7 +131,7 @@ class CityJsonInput : public SceneInput {
     try {
       header_ = json::parse(text);
       documents_.push_back({&header_, {}});
-    } catch (const json::parse_error& whole) {
+    } catch (const json::exception& whole) {  // parse_error, or out_of_range for a number past double
       // CityJSONSeq: a CityJSON header on the first line, then one CityJSONFeature a line.
       std::istringstream lines(text);
       std::string line;
@@ -151,7 +151,7 @@ class CityJsonInput : public SceneInput {
             features_.push_back(std::move(j));
           }
         }
-      } catch (const json::parse_error&) {
+      } catch (const json::exception&) {
         throw Error("'" + name_ + "' is not valid JSON: " + std::string(whole.what()).substr(0, 160));
       }
       if (first || features_.empty()) {
