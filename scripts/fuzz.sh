@@ -2,7 +2,8 @@
 # Fuzzes every reader of outside files with libFuzzer for a bounded time each: the LAS reader
 # (tests/fuzz/fuzz_las_reader.cpp), the CityJSON reader, the CityGML path and the mesh-file path of
 # the scene (fuzz_cityjson_reader, fuzz_citygml_reader, fuzz_mesh_reader), fish-eye images
-# (fuzz_fisheye_image) and point tables (fuzz_point_table). FUZZ_SECONDS (default 30) per target,
+# (fuzz_fisheye_image), point tables (fuzz_point_table) and the far field's pyramid files
+# (fuzz_pyramid_file). FUZZ_SECONDS (default 30) per target,
 # one process each; FUZZ_TARGETS (default: all) picks some. Seeds are the small sample files in
 # ../shared/sample_data (LAS, city3d) and Debian's assimp-testmodels when present, plus tiny files
 # written here (nothing binary is committed). Exits non-zero when a fuzzer finds a crash, sanitizer
@@ -12,7 +13,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${FUZZ_SECONDS:-30}
 targets=(${FUZZ_TARGETS:-fuzz_las_reader fuzz_cityjson_reader fuzz_citygml_reader fuzz_mesh_reader fuzz_fisheye_image
-  fuzz_point_table})
+  fuzz_point_table fuzz_pyramid_file})
 
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKYVIEW_BUILD_FUZZ=ON \
   -DSKYVIEW_BUILD_TESTS=OFF -DSKYVIEW_BUILD_BENCH=OFF >/dev/null
@@ -162,6 +163,29 @@ EOF
   rm -f "$images"/*.aux.xml
 }
 
+# Pyramid files (the format in include/skyview/tiling/pyramid_file.h): a 3 x 2 raster's two levels
+# from level 1, one with a NaN cell and a source text.
+seed_pyramid() {
+python3 - "$1" <<'EOF'
+import math, os, struct, sys
+
+def pyramid(width, height, levels, lo, hi, source):
+    body = b"SKYVPYRM" + struct.pack("<5I", 1, 1, width, height, len(levels)) + struct.pack("<2d", lo, hi)
+    body += struct.pack("<I", len(source)) + source
+    body += b"".join(struct.pack("<d", relief) for relief, _ in levels)
+    body += b"".join(struct.pack("<%df" % len(cells), *cells) for _, cells in levels)
+    h = 0xcbf29ce484222325
+    for b in body:
+        h = ((h ^ b) * 0x100000001b3) & 0xFFFFFFFFFFFFFFFF
+    return body + struct.pack("<Q", h)
+
+with open(os.path.join(sys.argv[1], "small.bin"), "wb") as f:
+    f.write(pyramid(3, 2, [(2.0, [1.0, 3.0]), (2.0, [3.0])], 1.0, 3.0, b'{"input":"dsm.tif"}'))
+with open(os.path.join(sys.argv[1], "nodata.bin"), "wb") as f:
+    f.write(pyramid(3, 2, [(0.0, [math.nan, 0.5]), (0.0, [0.5])], 0.5, 0.5, b""))
+EOF
+}
+
 status=0
 for target in "${targets[@]}"; do
   corpus=build-fuzz/corpus/$target
@@ -172,6 +196,7 @@ for target in "${targets[@]}"; do
     fuzz_citygml_reader) seed_citygml "$corpus" ;;
     fuzz_mesh_reader) seed_mesh "$corpus" ;;
     fuzz_fisheye_image | fuzz_point_table) seed_fisheye_and_points ;;
+    fuzz_pyramid_file) seed_pyramid "$corpus" ;;
   esac
   extra=()
   [ "$target" = fuzz_citygml_reader ] && extra=(-detect_leaks=0 -rss_limit_mb=6144)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "far_field_pyramid.h"
 #include "horizon_job.h"
 #include "skyview/core/number_text.h"
 #include "skyview/tiling/far_field.h"
@@ -42,7 +43,7 @@ void prepare_far_field(HorizonJob& job, double max_error) {
   s.cell_m = centre.min_cell_size();
   s.diagonal_m = std::max(centre.metres(1, 1), centre.metres(1, -1));
   s.curvature = curvature;
-  auto pyramid = std::make_shared<OverviewPyramid>(reader, pyramid_first_level(w, h, pyramid_budget(job.tiles)));
+  const auto pyramid = run_pyramid(job, pyramid_first_level(w, h, pyramid_budget(job.tiles)));
   // The smallest halo (in steps of 10%) whose bound meets the error asked; the whole raster's
   // reach where none does (then no far field is left).
   const double error = max_error >= 0 ? max_error : kDefaultFarFieldError;

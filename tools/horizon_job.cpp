@@ -1,9 +1,11 @@
 #include "horizon_job.h"
 #include "far_field_job.h"
+#include "far_field_pyramid.h"
 #include "tile_ranks.h"
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 
 #include <optional>
@@ -144,6 +146,14 @@ HorizonJob prepare_horizon_job(const HorizonJobOptions& o, const std::string& co
   if (tiling) {
     const RasterSize size = raster_size(o.input, o.band);
     job.tiles = plan_tiles(*tiling, *job.engine, size.width, size.height);
+    if (!tiling->options.tiles_dir.empty()) {  // a far field's pyramid is kept there, for reruns
+      job.tiles.pyramid_file = (std::filesystem::path(tiling->options.tiles_dir) / kPyramidFileName).string();
+      job.tiles.pyramid_source = nlohmann::json{
+          {"input", input_identity(o.input)},
+          {"band", o.band},
+          {"z_scale", o.z_scale},
+          {"s_srs", o.s_srs}}.dump();
+    }
   }
   if (job.tiles.tiled) {
     job.reader = std::make_shared<TerrainReader>(o.input, ro, &report);

@@ -1,7 +1,14 @@
 #include "tile_ranks.h"
 
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <thread>
 
 #include "skyview/core/error.h"
 
@@ -40,7 +47,9 @@ TileRanks::TileRanks() {
 #ifdef SKYVIEW_WITH_MPI
   int initialised = 0;
   MPI_Initialized(&initialised);
-  if (!initialised) MPI_Init(nullptr, nullptr);
+  // Rank 0 computes tiles on a second thread, which never calls MPI.
+  int provided = 0;
+  if (!initialised) MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
   started_ = true;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
   MPI_Comm_size(MPI_COMM_WORLD, &size_);
@@ -55,33 +64,82 @@ TileRanks::TileRanks() {
 #endif
 }
 
-void TileRanks::serve(const std::vector<int>& todo,
-                      const std::function<void(int tile, const std::string& record)>& done) {
-#ifdef SKYVIEW_WITH_MPI
+void TileRanks::serve(const std::vector<int>& todo, const std::function<std::string(int tile)>& work,
+                      const std::function<void(int tile, int rank, const std::string& record)>& done) {
+  // The queue, shared by the other ranks (through this thread) and rank 0's own worker thread.
+  std::mutex lock;
   std::size_t next = 0;
-  int stopped = 0;
-  while (stopped < size_ - 1) {
-    MPI_Status status;
-    MPI_Probe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
-    if (status.MPI_TAG == kDone) {
-      int length = 0;
-      MPI_Get_count(&status, MPI_CHAR, &length);
-      std::string message(static_cast<std::size_t>(length), '\0');
-      MPI_Recv(message.data(), length, MPI_CHAR, status.MPI_SOURCE, kDone, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-      const std::size_t cut = message.find('\n');
-      done(std::stoi(message.substr(0, cut)), message.substr(cut + 1));
-    } else {
-      int ignored = 0;
-      MPI_Recv(&ignored, 1, MPI_INT, status.MPI_SOURCE, kReady, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  bool stop = false;  // an error here: the worker takes no more tiles
+  auto take = [&] {
+    const std::lock_guard<std::mutex> hold(lock);
+    return !stop && next < todo.size() ? todo[next++] : -1;
+  };
+  std::deque<std::pair<int, std::string>> finished;  // rank 0's, not yet recorded
+  std::exception_ptr failure;
+  bool worker_done = false;
+  std::thread worker([&] {
+    try {
+      for (int tile; (tile = take()) >= 0;) {
+        std::string record = work(tile);
+        const std::lock_guard<std::mutex> hold(lock);
+        finished.emplace_back(tile, std::move(record));
+      }
+    } catch (...) {
+      const std::lock_guard<std::mutex> hold(lock);
+      failure = std::current_exception();
     }
-    const int tile = next < todo.size() ? todo[next++] : -1;
-    stopped += tile < 0;
-    MPI_Send(&tile, 1, MPI_INT, status.MPI_SOURCE, kTile, MPI_COMM_WORLD);
-  }
+    const std::lock_guard<std::mutex> hold(lock);
+    worker_done = true;
+  });
+  try {
+    int stopped = 0;  // ranks told that no tile is left
+    for (;;) {
+      std::deque<std::pair<int, std::string>> mine;
+      bool all_mine = false;
+      {
+        const std::lock_guard<std::mutex> hold(lock);
+        if (failure) std::rethrow_exception(failure);
+        mine.swap(finished);
+        all_mine = worker_done;
+      }
+      for (const auto& [tile, record] : mine) done(tile, 0, record);
+      if (all_mine && stopped == size_ - 1) break;
+#ifdef SKYVIEW_WITH_MPI
+      int waiting = 0;
+      MPI_Status status;
+      if (stopped < size_ - 1) MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &waiting, &status);
+      if (!waiting) {
+        // A blocking probe would poll busily (OpenMPI) and take a core from rank 0's own tiles.
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        continue;
+      }
+      if (status.MPI_TAG == kDone) {
+        int length = 0;
+        MPI_Get_count(&status, MPI_CHAR, &length);
+        std::string message(static_cast<std::size_t>(length), '\0');
+        MPI_Recv(message.data(), length, MPI_CHAR, status.MPI_SOURCE, kDone, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        const std::size_t cut = message.find('\n');
+        done(std::stoi(message.substr(0, cut)), status.MPI_SOURCE, message.substr(cut + 1));
+      } else {
+        int ignored = 0;
+        MPI_Recv(&ignored, 1, MPI_INT, status.MPI_SOURCE, kReady, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      }
+      const int tile = take();
+      stopped += tile < 0;
+      MPI_Send(&tile, 1, MPI_INT, status.MPI_SOURCE, kTile, MPI_COMM_WORLD);
 #else
-  (void)todo;
-  (void)done;
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
 #endif
+    }
+  } catch (...) {
+    {
+      const std::lock_guard<std::mutex> hold(lock);
+      stop = true;
+    }
+    worker.join();  // after the tile it is on
+    throw;
+  }
+  worker.join();
 }
 
 void TileRanks::work(const std::function<std::string(int tile)>& work) {
@@ -110,10 +168,52 @@ void TileRanks::abort(const std::string& command, const std::string& message) {
   std::_Exit(1);
 }
 
-void TileRanks::finish_worker() {
+std::string TileRanks::broadcast(const std::function<std::string()>& make) {
+  if (!parallel()) return make();
+#ifdef SKYVIEW_WITH_MPI
+  std::string bytes;
+  std::uint64_t size = 0;
+  int ok = 1;
+  std::exception_ptr failure;
+  if (rank_ == 0) {
+    try {
+      bytes = make();
+      size = bytes.size();
+    } catch (...) {
+      failure = std::current_exception();
+      ok = 0;
+    }
+  }
+  // The other ranks wait here while rank 0 makes the bytes (reads the whole raster): without
+  // spinning, as in serve.
+  MPI_Request request;
+  MPI_Ibcast(&ok, 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
+  int arrived = 0;
+  MPI_Test(&request, &arrived, MPI_STATUS_IGNORE);
+  while (!arrived) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    MPI_Test(&request, &arrived, MPI_STATUS_IGNORE);
+  }
+  if (!ok) {
+    if (rank_ == 0) std::rethrow_exception(failure);
+    finish_worker(1);
+  }
+  MPI_Bcast(&size, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  bytes.resize(static_cast<std::size_t>(size));
+  // In pieces: an MPI count is an int.
+  constexpr std::uint64_t kPiece = std::uint64_t{1} << 30;
+  for (std::uint64_t at = 0; at < size; at += kPiece)
+    MPI_Bcast(bytes.data() + at, static_cast<int>(std::min(kPiece, size - at)), MPI_BYTE, 0, MPI_COMM_WORLD);
+  return bytes;
+#else
+  return make();
+#endif
+}
+
+void TileRanks::finish_worker(int code) {
   std::fflush(stdout);
   std::fflush(stderr);
-  std::exit(0);  // MPI_Finalize runs at exit
+  std::exit(code);  // MPI_Finalize runs at exit
 }
 
 }  // namespace skyview::cli

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "far_field_pyramid.h"
 #include "horizon_job.h"
 #include "skyview/core/error.h"
 #include "skyview/core/number_text.h"
@@ -207,6 +208,14 @@ TileSummary run_tiles(HorizonJob& job, const TiledOutput& output, ProgressCounte
     if (!TileRanks::world().parallel()) throw;
     TileRanks::world().abort(job.metadata.at("SKYVIEW_PRODUCT"), e.what());
   }
+  if (TileRanks::world().rank() == 0) {  // the far field's pyramid kept beside the tiles, for reruns
+    try {
+      if (keep_run_pyramid(job, manifest)) manifest.save(manifest_path);  // even where no tile is left
+    } catch (const Error& e) {
+      if (!TileRanks::world().parallel()) throw;
+      TileRanks::world().abort(job.metadata.at("SKYVIEW_PRODUCT"), e.what());
+    }
+  }
   std::vector<std::string> files;
   for (int i = 0; i < grid.count(); ++i) files.push_back((dir / tile_name(grid, i)).string());
   // A tile computed, written under a temporary name, renamed into place, and its record.
@@ -255,23 +264,34 @@ TileSummary run_tiles(HorizonJob& job, const TiledOutput& output, ProgressCounte
     }
     todo.push_back(i);
   }
-  auto record = [&](int i, const TileRecord& tile) {
+  job.tiles.tiles_by_rank.assign(static_cast<std::size_t>(ranks.size()), 0);
+  // A finished tile into the sums and the manifest; `rank` made it (whose progress counted it if 0).
+  auto record = [&](int i, int rank, TileRecord tile) {
     total.add(summary_from_json(tile.summary));
+    tile.summary["rank"] = rank;
     manifest.record(tile.file, tile);
     manifest.save(manifest_path);
-    progress.advance(ranks.parallel() ? static_cast<std::uint64_t>(grid.core(i).cells()) : 0);
+    ++job.tiles.tiles_by_rank[static_cast<std::size_t>(rank)];
+    progress.advance(rank > 0 ? static_cast<std::uint64_t>(grid.core(i).cells()) : 0);
   };
   if (ranks.parallel()) {
     try {
-      ranks.serve(todo, [&](int i, const std::string& message) {
-        const std::size_t cut = message.find('\n');
-        record(i, {tile_name(grid, i), message.substr(0, cut), nlohmann::json::parse(message.substr(cut + 1))});
-      });
+      ranks.serve(
+          todo,
+          [&](int i) {
+            const TileRecord tile = make_tile(i);
+            return tile.checksum + "\n" + tile.summary.dump();
+          },
+          [&](int i, int rank, const std::string& message) {
+            const std::size_t cut = message.find('\n');
+            record(i, rank,
+                   {tile_name(grid, i), message.substr(0, cut), nlohmann::json::parse(message.substr(cut + 1))});
+          });
     } catch (const std::exception& e) {
       ranks.abort(command, e.what());
     }
   } else {
-    for (int i : todo) record(i, make_tile(i));
+    for (int i : todo) record(i, 0, make_tile(i));
   }
   job.tiles.skipped = skipped;
   write_vrt_mosaic(output.path, files, late_metadata(), output.options.overwrite);
@@ -288,6 +308,11 @@ std::map<std::string, std::string> tiling_metadata(const TilePlan& plan) {
   m["TILING"] = plan.why + "; each tile computed on its window plus the halo, as the whole raster gives it";
   m["MEMORY_LIMIT_BYTES"] = std::to_string(plan.limit);
   if (plan.skipped > 0) m["TILES_REUSED"] = std::to_string(plan.skipped);
+  std::string by_rank;
+  for (std::size_t r = 0; plan.tiles_by_rank.size() > 1 && r < plan.tiles_by_rank.size(); ++r)
+    by_rank += (r > 0 ? ", " : "") + ("rank " + std::to_string(r) + ": ") + std::to_string(plan.tiles_by_rank[r]);
+  if (!by_rank.empty()) m["TILES_BY_RANK"] = by_rank;
+  if (plan.pyramid_reused) m["FAR_FIELD_PYRAMID_REUSED"] = plan.pyramid_file;
   return m;
 }
 

@@ -50,6 +50,11 @@ struct TilePlan {
   std::uint64_t reserved = 0;        // bytes of the limit held for the whole run (the far field's pyramid)
   std::uint64_t whole_estimate = 0;  // bytes the whole run would take by the memory model
   std::string why;                   // "--tile-size 64", "the whole run needs about ... over ..."
+  // With --tiles-dir: where the far field's pyramid is kept (far_field_pyramid.h), what identifies
+  // the input it is built from, and whether this run read it from there.
+  std::string pyramid_file, pyramid_source;
+  bool pyramid_reused = false;
+  std::vector<int> tiles_by_rank;  // tiles each rank computed in this run (--tiles-dir)
 };
 
 // The options' checks that need no input (exit 2 for a tile size below 1, a size that is no size,
@@ -100,8 +105,8 @@ using TileWork =
 // advances by each tile's cells. Returns the sums over all tiles.
 TileSummary run_tiles(HorizonJob& job, const TiledOutput& output, ProgressCounter& progress, const TileWork& work);
 
-// The tiling keys of the output's metadata (TILE_SIZE, TILE_HALO_CELLS, TILES, MEMORY_LIMIT) and
-// the run's measured peak (PEAK_MEMORY_BYTES).
+// The tiling keys of the output's metadata (TILE_SIZE, TILE_HALO_CELLS, TILES, MEMORY_LIMIT,
+// TILES_BY_RANK, FAR_FIELD_PYRAMID_REUSED) and the run's measured peak (PEAK_MEMORY_BYTES).
 std::map<std::string, std::string> tiling_metadata(const TilePlan& plan);
 
 }  // namespace skyview::cli

@@ -21,22 +21,26 @@ int cells_at(int n, int level) { return static_cast<int>((static_cast<std::int64
 
 }  // namespace
 
-OverviewPyramid::OverviewPyramid(const TerrainReader& reader, int first_level)
-    : first_(std::max(1, first_level)), width_(reader.width()), height_(reader.height()) {
+OverviewPyramid::OverviewPyramid(const TerrainReader& reader, int first_level) {
+  p_.first_level = std::max(1, first_level);
+  p_.width = reader.width();
+  p_.height = reader.height();
   std::vector<Grid<float>> minima;
-  const int step = strip_rows(width_, 1 << first_);
-  for (int row0 = 0; row0 < height_; row0 += step) {
-    const int rows = std::min(step, height_ - row0);
-    const Terrain strip = reader.read({0, row0, width_, rows});
+  const int step = strip_rows(p_.width, 1 << p_.first_level);
+  for (int row0 = 0; row0 < p_.height; row0 += step) {
+    const int rows = std::min(step, p_.height - row0);
+    const Terrain strip = reader.read({0, row0, p_.width, rows});
     add_rows(strip.heights, row0, rows, minima);
   }
   build_levels(minima);
 }
 
-OverviewPyramid::OverviewPyramid(const Terrain& terrain, int first_level)
-    : first_(std::max(1, first_level)), width_(terrain.width()), height_(terrain.height()) {
+OverviewPyramid::OverviewPyramid(const Terrain& terrain, int first_level) {
+  p_.first_level = std::max(1, first_level);
+  p_.width = terrain.width();
+  p_.height = terrain.height();
   std::vector<Grid<float>> minima;
-  add_rows(terrain.heights, 0, height_, minima);
+  add_rows(terrain.heights, 0, p_.height, minima);
   build_levels(minima);
 }
 
@@ -44,13 +48,13 @@ OverviewPyramid::OverviewPyramid(const Terrain& terrain, int first_level)
 // block, grown by one raster cell on each side, holds it: the surface between cell centres
 // (the mesh every method reads) within a block is then bounded by the block's extremes.
 void OverviewPyramid::add_rows(const Grid<float>& heights, int row0, int rows, std::vector<Grid<float>>& minima) {
-  const int b = 1 << first_;
-  const int w = cells_at(width_, first_), h = cells_at(height_, first_);
-  if (max_.empty()) {
-    max_.emplace_back(w, h, NAN);
+  const int b = 1 << p_.first_level;
+  const int w = cells_at(p_.width, p_.first_level), h = cells_at(p_.height, p_.first_level);
+  if (p_.max.empty()) {
+    p_.max.emplace_back(w, h, NAN);
     minima.emplace_back(w, h, NAN);
   }
-  Grid<float>& hi = max_.front();
+  Grid<float>& hi = p_.max.front();
   Grid<float>& lo = minima.front();
   // The blocks whose grown extent holds cell n: k - 1 where n is a block's first cell, k + 1
   // where it is its last.
@@ -62,11 +66,11 @@ void OverviewPyramid::add_rows(const Grid<float>& heights, int row0, int rows, s
   for (int r = 0; r < rows; ++r) {
     int j0, j1;
     blocks(row0 + r, h, j0, j1);
-    for (int c = 0; c < width_; ++c) {
+    for (int c = 0; c < p_.width; ++c) {
       const float z = heights(c, r);
       if (std::isnan(z)) continue;
-      lo_ = std::min(lo_, static_cast<double>(z));
-      hi_ = std::max(hi_, static_cast<double>(z));
+      p_.lowest = std::min(p_.lowest, static_cast<double>(z));
+      p_.highest = std::max(p_.highest, static_cast<double>(z));
       int i0, i1;
       blocks(c, w, i0, i1);
       for (int j = j0; j <= j1; ++j) {
@@ -89,9 +93,9 @@ void OverviewPyramid::build_levels(std::vector<Grid<float>>& minima) {
     }
     return r;
   };
-  relief_.push_back(relief_of(max_.back(), minima.back()));
-  while (max_.back().width() > 1 || max_.back().height() > 1) {
-    const Grid<float>& hi = max_.back();
+  p_.relief.push_back(relief_of(p_.max.back(), minima.back()));
+  while (p_.max.back().width() > 1 || p_.max.back().height() > 1) {
+    const Grid<float>& hi = p_.max.back();
     const Grid<float>& lo = minima.back();
     const int w = (hi.width() + 1) / 2, h = (hi.height() + 1) / 2;
     Grid<float> up(w, h, NAN), down(w, h, NAN);
@@ -107,15 +111,15 @@ void OverviewPyramid::build_levels(std::vector<Grid<float>>& minima) {
         }
       }
     }
-    relief_.push_back(relief_of(up, down));
-    max_.push_back(std::move(up));
+    p_.relief.push_back(relief_of(up, down));
+    p_.max.push_back(std::move(up));
     minima.push_back(std::move(down));
   }
 }
 
 std::uint64_t OverviewPyramid::bytes() const {
   std::uint64_t n = 0;
-  for (const Grid<float>& g : max_) n += g.size() * sizeof(float);
+  for (const Grid<float>& g : p_.max) n += g.size() * sizeof(float);
   return n;
 }
 

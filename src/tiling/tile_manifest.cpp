@@ -24,6 +24,8 @@ std::optional<TileManifest> TileManifest::load(const std::string& path) {
     for (const auto& [name, t] : j.at("tiles").items())
       m.tiles_[name] = {t.at("file").get<std::string>(), t.at("checksum").get<std::string>(),
                         t.value("summary", nlohmann::json::object())};
+    if (j.contains("files"))
+      for (const auto& [name, f] : j.at("files").items()) m.files_[name] = f;
     return m;
   } catch (const nlohmann::json::exception& e) {
     throw Error("'" + path + "' is not a skyview tile manifest (" + e.what() +
@@ -36,6 +38,11 @@ const TileRecord* TileManifest::find(const std::string& tile) const {
   return it == tiles_.end() ? nullptr : &it->second;
 }
 
+const nlohmann::json* TileManifest::kept(const std::string& name) const {
+  const auto it = files_.find(name);
+  return it == files_.end() ? nullptr : &it->second;
+}
+
 void TileManifest::save(const std::string& path) const {
   nlohmann::json j;
   j["format"] = "skyview tile manifest 1";
@@ -43,6 +50,7 @@ void TileManifest::save(const std::string& path) const {
   j["tiles"] = nlohmann::json::object();
   for (const auto& [name, t] : tiles_)
     j["tiles"][name] = {{"file", t.file}, {"checksum", t.checksum}, {"summary", t.summary}};
+  if (!files_.empty()) j["files"] = files_;
   write_output_file(path, j.dump(2) + "\n", true);
 }
 

@@ -95,17 +95,41 @@ TEST(MpiTiles, ARankKilledMidRunThenARerunGiveTheSameBitsAsOneProcess) {
 
 namespace {
 
-// Every rank builds the far field's pyramid itself, from the same raster: the same bits.
+// Rank 0 builds the far field's pyramid and sends it to the other rank (which never reads the
+// raster whole): the same bits, the same pyramid file as one process; a rerun reads it back.
 TEST(MpiTiles, FarFieldRunsGiveTheSameBitsAsOneProcess) {
   if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun is not installed";
   const std::string dir = temp_dir("mpi-far-field");
   const std::string dsm = write_small_city(dir, 240, 200);  // a far field beyond 183 m
-  const RunResult r = svf_once_and_under_mpirun(dsm, " --directions 8 --tile-size 64 --far-field-error 0.3", dir);
+  const std::string options = " --directions 8 --tile-size 64 --far-field-error 0.3";
+  const RunResult r = svf_once_and_under_mpirun(dsm, options, dir);
   if (r.exit_code != 0 && r.err.find("built without MPI") != std::string::npos)
     GTEST_SKIP() << "this build has no MPI: " << r.err;
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(same_bands(dir + "/two.vrt", dir + "/one.vrt"));
   EXPECT_LT(std::stod(metadata_item(dir + "/two.vrt", "FAR_FIELD_HALO_M")), 300.0);
+  auto bytes_of = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  const std::string pyramid = bytes_of(dir + "/two/far_field_pyramid.bin");
+  EXPECT_GT(pyramid.size(), 1000u);
+  EXPECT_EQ(bytes_of(dir + "/one/far_field_pyramid.bin"), pyramid);
+  const std::vector<int> by_rank = tiles_by_rank(dir + "/two.vrt");
+  ASSERT_EQ(by_rank.size(), 2u);
+  EXPECT_GT(by_rank[0], 0);  // rank 0 computed tiles too
+  EXPECT_EQ(by_rank[0] + by_rank[1], 16);
+
+  // The rerun of a run that lost a tile and its mosaic reads the pyramid kept in the folder.
+  std::filesystem::remove(dir + "/two/tile_0_0.tif");
+  std::filesystem::remove(dir + "/two.vrt");
+  const RunResult again = run_executable(
+      mpirun_two_ranks(), "svf " + dsm + " " + dir + "/two.vrt" + options + " --tiles-dir " + dir + "/two", dir);
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(metadata_item(dir + "/two.vrt", "FAR_FIELD_PYRAMID_REUSED"), dir + "/two/far_field_pyramid.bin");
+  EXPECT_EQ(metadata_item(dir + "/two.vrt", "TILES_REUSED"), "15");
+  EXPECT_EQ(bytes_of(dir + "/two/far_field_pyramid.bin"), pyramid);
+  EXPECT_TRUE(same_bands(dir + "/two.vrt", dir + "/one.vrt"));
 }
 
 }  // namespace

@@ -20,6 +20,13 @@ TEST(MpiTiles, TwoRanksGiveTheSameBitsAsOneProcess) {
   EXPECT_TRUE(same_bands(dir + "/two.vrt", dir + "/one.vrt"));
   EXPECT_TRUE(std::filesystem::exists(dir + "/two/manifest.json"));
   EXPECT_TRUE(std::filesystem::exists(dir + "/two/tile_3_4.tif"));  // the last of 5 x 4 tiles
+  // Rank 0 computed tiles besides handing them out, and both ranks' counts make every tile.
+  const std::vector<int> by_rank = tiles_by_rank(dir + "/two.vrt");
+  ASSERT_EQ(by_rank.size(), 2u) << metadata_item(dir + "/two.vrt", "TILES_BY_RANK");
+  EXPECT_GT(by_rank[0], 0);
+  EXPECT_GT(by_rank[1], 0);
+  EXPECT_EQ(by_rank[0] + by_rank[1], 20);
+  EXPECT_TRUE(tiles_by_rank(dir + "/one.vrt").empty());
 }
 
 TEST(MpiTiles, SeveralRanksWithoutTilesDirAreRefused) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "core/cli_run.h"
 #include "core/test_support.h"
@@ -56,6 +57,16 @@ inline std::string metadata_item(const std::string& path, const char* key) {
   std::string out = v ? v : "";
   GDALClose(ds);
   return out;
+}
+
+// TILES_BY_RANK of a --tiles-dir run's mosaic ("rank 0: 12, rank 1: 8"): the tiles each rank
+// computed; empty where it is absent (one process).
+inline std::vector<int> tiles_by_rank(const std::string& vrt) {
+  std::vector<int> counts;
+  const std::string text = metadata_item(vrt, "TILES_BY_RANK");
+  for (std::size_t at = text.find(": "); at != std::string::npos; at = text.find(": ", at + 1))
+    counts.push_back(std::stoi(text.substr(at + 2)));
+  return counts;
 }
 
 // Every band of `a` holds the same bits as `b`'s (NaN where it has NaN), with the same name.

@@ -12,6 +12,7 @@
 #include "skyview/raster/terrain.h"
 #include "skyview/raster/terrain_reader.h"
 #include "skyview/sky_view/sky_view.h"
+#include "skyview/tiling/pyramid_file.h"
 
 namespace skyview {
 
@@ -23,25 +24,26 @@ class OverviewPyramid {
   OverviewPyramid(const TerrainReader& reader, int first_level);
   // Pyramid of a terrain already in memory (tests).
   OverviewPyramid(const Terrain& terrain, int first_level);
+  // A pyramid as stored (decode_pyramid checked its sizes).
+  explicit OverviewPyramid(PyramidLevels levels) : p_(std::move(levels)) {}
 
-  int first_level() const { return first_; }
-  int last_level() const { return first_ + static_cast<int>(max_.size()) - 1; }
+  int first_level() const { return p_.first_level; }
+  int last_level() const { return p_.first_level + static_cast<int>(p_.max.size()) - 1; }
   // Level l's maxima (NaN where every cell below is nodata).
-  const Grid<float>& level(int l) const { return max_[static_cast<std::size_t>(l - first_)]; }
+  const Grid<float>& level(int l) const { return p_.max[static_cast<std::size_t>(l - p_.first_level)]; }
   // The largest relief (maximum less minimum) within one cell of level l, metres.
-  double relief(int l) const { return relief_[static_cast<std::size_t>(l - first_)]; }
+  double relief(int l) const { return p_.relief[static_cast<std::size_t>(l - p_.first_level)]; }
   // The raster's lowest and highest valid heights (relative to the base height).
-  double lowest() const { return lo_; }
-  double highest() const { return hi_; }
+  double lowest() const { return p_.lowest; }
+  double highest() const { return p_.highest; }
   std::uint64_t bytes() const;
+  // Everything it holds, as encode_pyramid stores it.
+  const PyramidLevels& levels() const { return p_; }
 
  private:
   void add_rows(const Grid<float>& heights, int row0, int rows, std::vector<Grid<float>>& minima);
   void build_levels(std::vector<Grid<float>>& minima);
-  int first_ = 1, width_ = 0, height_ = 0;
-  std::vector<Grid<float>> max_;
-  std::vector<double> relief_;
-  double lo_ = INFINITY, hi_ = -INFINITY;
+  PyramidLevels p_;
 };
 
 // The far field's error, for a halo of H metres on a pyramid (docs/tiling.md derives it).
@@ -76,6 +78,7 @@ class FarField final : public FarHorizons {
   // .5) and height z along azimuth `azimuth`; -inf where the ray meets no valid cell beyond H.
   double far_tangent(double x, double y, double z, double azimuth) const;
   const FarFieldSettings& settings() const { return s_; }
+  const std::shared_ptr<const OverviewPyramid>& pyramid() const { return pyramid_; }
 
  private:
   std::shared_ptr<const OverviewPyramid> pyramid_;

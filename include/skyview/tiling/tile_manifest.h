@@ -31,12 +31,16 @@ class TileManifest {
   void record(const std::string& tile, TileRecord record) { tiles_[tile] = std::move(record); }
   void forget(const std::string& tile) { tiles_.erase(tile); }
   std::size_t size() const { return tiles_.size(); }
+  // The run's other files (the far field's pyramid), each a record of its own ("file", "checksum").
+  void keep(const std::string& name, nlohmann::json record) { files_[name] = std::move(record); }
+  const nlohmann::json* kept(const std::string& name) const;
   // Throws skyview::Error naming `path` when it cannot be written.
   void save(const std::string& path) const;
 
  private:
   nlohmann::json run_;
   std::map<std::string, TileRecord> tiles_;
+  std::map<std::string, nlohmann::json> files_;
 };
 
 // 64-bit FNV-1a of the file's bytes, as 16 hex digits; throws skyview::Error when it cannot be read.
