@@ -265,7 +265,8 @@ TileSummary run_tiles(HorizonJob& job, const TiledOutput& output, ProgressCounte
     todo.push_back(i);
   }
   job.tiles.tiles_by_rank.assign(static_cast<std::size_t>(ranks.size()), 0);
-  // A finished tile into the sums and the manifest; `rank` made it (whose progress counted it if 0).
+  // A finished tile into the sums and the manifest; `rank` made it (rank 0's work advanced the
+  // progress itself, as a single process's does).
   auto record = [&](int i, int rank, TileRecord tile) {
     total.add(summary_from_json(tile.summary));
     tile.summary["rank"] = rank;
@@ -308,10 +309,12 @@ std::map<std::string, std::string> tiling_metadata(const TilePlan& plan) {
   m["TILING"] = plan.why + "; each tile computed on its window plus the halo, as the whole raster gives it";
   m["MEMORY_LIMIT_BYTES"] = std::to_string(plan.limit);
   if (plan.skipped > 0) m["TILES_REUSED"] = std::to_string(plan.skipped);
-  std::string by_rank;
-  for (std::size_t r = 0; plan.tiles_by_rank.size() > 1 && r < plan.tiles_by_rank.size(); ++r)
-    by_rank += (r > 0 ? ", " : "") + ("rank " + std::to_string(r) + ": ") + std::to_string(plan.tiles_by_rank[r]);
-  if (!by_rank.empty()) m["TILES_BY_RANK"] = by_rank;
+  if (plan.tiles_by_rank.size() > 1) {  // under mpirun: "rank 0: 9, rank 1: 7"
+    std::string by_rank;
+    for (std::size_t r = 0; r < plan.tiles_by_rank.size(); ++r)
+      by_rank += (r > 0 ? ", rank " : "rank ") + std::to_string(r) + ": " + std::to_string(plan.tiles_by_rank[r]);
+    m["TILES_BY_RANK"] = by_rank;
+  }
   if (plan.pyramid_reused) m["FAR_FIELD_PYRAMID_REUSED"] = plan.pyramid_file;
   return m;
 }
