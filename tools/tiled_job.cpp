@@ -28,7 +28,8 @@ void add_tiling_options(CLI::App& app, TilingOptions& o) {
   app.add_option("--tiles-dir", o.tiles_dir,
                  "Write one GeoTIFF per tile into this folder (tile_<row>_<col>.tif, created if missing) and a VRT "
                  "mosaic of them at the output (which must end in .vrt), with a manifest (manifest.json) that lets a "
-                 "rerun of the same command skip the tiles already finished");
+                 "rerun of the same command skip the tiles already finished; a far field's pyramid is kept there "
+                 "too (far_field_pyramid.bin), for reruns of the same input");
   app.add_option("--memory-limit", o.memory_limit,
                  "Memory the run may take (8G, 512M; binary units); a run estimated to need more goes tile by tile "
                  "with the largest tiles that fit (default: the memory available when it starts)");
