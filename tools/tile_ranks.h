@@ -28,8 +28,9 @@ class TileRanks {
              const std::function<void(int tile, int rank, const std::string& record)>& done);
   // Other ranks: asks for tiles until none remain; `work` computes one and returns its record.
   void work(const std::function<std::string(int tile)>& work);
-  // Rank 0's `bytes` on every rank (what `make` returns on rank 0, called there alone). Where `make`
-  // throws, rank 0 rethrows and the other ranks end quietly with exit code 1 (rank 0 prints the error).
+  // What `make` returns on rank 0 (which alone calls it), on every rank; the others wait without
+  // spinning. Where `make` throws, rank 0 rethrows and the other ranks end quietly with exit code 1
+  // (rank 0 prints the error).
   std::string broadcast(const std::function<std::string()>& make);
   // Prints `message` as the run's one error line and ends every rank with exit code 1.
   [[noreturn]] void abort(const std::string& command, const std::string& message);
