@@ -143,15 +143,19 @@ FarFieldBound far_field_bound(const OverviewPyramid& pyramid, const FarFieldSett
   // A far angle read from level l at entry distance d (>= the level's start) differs from the
   // exact one along the same ray by at most (relief + c (2 d l + l^2) + l t) / d, l the block's
   // diagonal (docs/tiling.md).
-  double refined = 0;
+  double refined = 0, below = 0;
   const int first = far_field_first_level(s, pyramid.first_level());
   for (int l = first; l <= pyramid.last_level(); ++l) {
     const double d = level_start(s, l, first);
     if (d >= raster_diagonal_m) break;
     const double diag = std::ldexp(s.diagonal_m, l);
     refined = std::max(refined, (pyramid.relief(l) + s.curvature * (2 * d * diag + diag * diag) + diag * t) / d);
+    // Below the horizontal the block's entry distance can also make the far angle too low: by at
+    // most the block's length times |dh/dd| <= (R + c d'^2) / d^2, d' <= d + diag.
+    below = std::max(below, diag * (t + s.curvature * (1 + diag / d) * (1 + diag / d) * d) / d);
   }
   b.angle = std::min(crude, refined);
+  b.horizon = std::max(refined, below);
   // Both horizons lie in [0, atan t] where they differ in these bands (max(h, 0)): the sine
   // squared moves by at most sin(2 h) dh there, the sine by at most dh.
   b.svf = std::min(std::sin(crude) * std::sin(crude), std::sin(std::min(2 * crude, M_PI / 2)) * b.angle);
@@ -170,11 +174,16 @@ double FarField::far_tangent(double x0, double y0, double z0, double azimuth) co
   double best = -std::numeric_limits<double>::infinity();
   const double c = s_.curvature;
   const int first = far_field_first_level(s_, p.first_level());
+  // Where the ray leaves the raster: a level's last row and column of cells reach past its edge,
+  // and their maxima stand for terrain the ray never passes over (which the bound does not cover).
+  const double t_exit = std::min(ux > 0 ? (width_ - x0) / ux : (ux < 0 ? -x0 / ux : INFINITY),
+                                 uy > 0 ? (height_ - y0) / uy : (uy < 0 ? -y0 / uy : INFINITY));
   for (int l = first; l <= p.last_level(); ++l) {
     const Grid<float>& g = p.level(l);
     const double size = std::ldexp(1.0, l);  // raster cells per level cell
     const double t_a = level_start(s_, l, first);
-    const double t_b = l == p.last_level() ? INFINITY : level_start(s_, l + 1, first);
+    if (t_a >= t_exit) break;
+    const double t_b = std::min(t_exit, l == p.last_level() ? INFINITY : level_start(s_, l + 1, first));
     // An exact walk over the level's cells the ray crosses in [t_a, t_b) (Amanatides and Woo).
     const double px = (x0 + ux * t_a) / size, py = (y0 + uy * t_a) / size;
     int i = static_cast<int>(std::floor(px)), j = static_cast<int>(std::floor(py));

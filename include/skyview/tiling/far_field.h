@@ -46,7 +46,8 @@ class OverviewPyramid {
 
 // The far field's error, for a halo of H metres on a pyramid (docs/tiling.md derives it).
 struct FarFieldBound {
-  double angle = 0;           // radians: |horizon angle - exact| in any direction, where above 0
+  double angle = 0;           // radians: |horizon angle - exact| in any direction, where both are above 0
+  double horizon = 0;         // radians: |horizon angle - exact| in any direction, of any sign (skyview horizon)
   double svf = 0;             // |svf - exact svf| (also svf_surface's, openness in degrees: angle)
   double sky_visibility = 0;  // |sky_visibility - exact|
 };
