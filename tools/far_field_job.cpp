@@ -18,7 +18,7 @@ std::uint64_t pyramid_budget(const TilePlan& plan) {
   return std::max<std::uint64_t>(std::uint64_t{64} << 20, plan.limit / 8);
 }
 
-// The finest first level whose pyramid (maxima and, while it is built, minima: 8 bytes a cell,
+// The finest first level whose pyramid (maxima and minima, kept for negative openness: 8 bytes a cell,
 // 4/3 of the first level's cells in all) fits the budget.
 int pyramid_first_level(int width, int height, std::uint64_t budget) {
   int l = 1;
@@ -44,7 +44,10 @@ void prepare_far_field(HorizonJob& job, double max_error) {
   s.cell_m = centre.min_cell_size();
   s.diagonal_m = std::max(centre.metres(1, 1), centre.metres(1, -1));
   s.curvature = curvature;
-  auto pyramid = std::make_shared<OverviewPyramid>(reader, pyramid_first_level(w, h, pyramid_budget(job.tiles)));
+  // The lowest angles (negative openness) read the levels' minima too.
+  const bool lowest = job.engine->params().lower;
+  auto pyramid =
+      std::make_shared<OverviewPyramid>(reader, pyramid_first_level(w, h, pyramid_budget(job.tiles)), lowest);
   // The smallest halo (in steps of 10%) whose bound meets the error asked; the whole raster's
   // reach where none does (then no far field is left).
   const double error = max_error >= 0 ? max_error : kDefaultFarFieldError;
@@ -88,10 +91,10 @@ void prepare_far_field(HorizonJob& job, double max_error) {
   m["FAR_FIELD_BOUND_SKY_VISIBILITY"] = number_text(bound.sky_visibility);
   m["FAR_FIELD_BOUND_ANGLE_DEG"] = number_text(bound.angle * 180 / M_PI);
   m["FAR_FIELD_BOUND_HORIZON_DEG"] = number_text(bound.horizon * 180 / M_PI);
-  if (job.engine->params().lower && halo < diagonal) {
+  if (lowest && halo < diagonal) {
     m["FAR_FIELD_OPENNESS_NEGATIVE"] =
-        "near field only: the lowest angles come from the tile and its halo (at least FAR_FIELD_HALO_M), which "
-        "the bound does not cover (docs/tiling.md)";
+        "the lowest angles beyond the halo from the pyramid's minima (min-pooled), never above the exact ones: "
+        "openness_negative within FAR_FIELD_BOUND_HORIZON_DEG degrees";
   }
   m["FAR_FIELD_ERROR_ASKED"] = number_text(error) + (max_error >= 0 ? " (asked)" : " (default)");
   m["FAR_FIELD_PYRAMID_BYTES"] = std::to_string(pyramid->bytes());

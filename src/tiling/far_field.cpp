@@ -21,7 +21,7 @@ int cells_at(int n, int level) { return static_cast<int>((static_cast<std::int64
 
 }  // namespace
 
-OverviewPyramid::OverviewPyramid(const TerrainReader& reader, int first_level)
+OverviewPyramid::OverviewPyramid(const TerrainReader& reader, int first_level, bool keep_minima)
     : first_(std::max(1, first_level)), width_(reader.width()), height_(reader.height()) {
   std::vector<Grid<float>> minima;
   const int step = strip_rows(width_, 1 << first_);
@@ -31,13 +31,15 @@ OverviewPyramid::OverviewPyramid(const TerrainReader& reader, int first_level)
     add_rows(strip.heights, row0, rows, minima);
   }
   build_levels(minima);
+  if (keep_minima) min_ = std::move(minima);
 }
 
-OverviewPyramid::OverviewPyramid(const Terrain& terrain, int first_level)
+OverviewPyramid::OverviewPyramid(const Terrain& terrain, int first_level, bool keep_minima)
     : first_(std::max(1, first_level)), width_(terrain.width()), height_(terrain.height()) {
   std::vector<Grid<float>> minima;
   add_rows(terrain.heights, 0, height_, minima);
   build_levels(minima);
+  if (keep_minima) min_ = std::move(minima);
 }
 
 // Each raster cell raises the maximum (and lowers the minimum) of every first-level cell whose
@@ -116,6 +118,7 @@ void OverviewPyramid::build_levels(std::vector<Grid<float>>& minima) {
 std::uint64_t OverviewPyramid::bytes() const {
   std::uint64_t n = 0;
   for (const Grid<float>& g : max_) n += g.size() * sizeof(float);
+  for (const Grid<float>& g : min_) n += g.size() * sizeof(float);
   return n;
 }
 
@@ -167,22 +170,21 @@ FarField::FarField(std::shared_ptr<const OverviewPyramid> pyramid, const FarFiel
                    int raster_width, int raster_height)
     : pyramid_(std::move(pyramid)), s_(s), centre_(centre), width_(raster_width), height_(raster_height) {}
 
-double FarField::far_tangent(double x0, double y0, double z0, double azimuth) const {
+template <class Visit>
+void FarField::march(double x0, double y0, double azimuth, Visit&& visit) const {
   double ux = 0, uy = 0;  // pixels per metre along the ray
   centre_.pixel_step_for_azimuth(azimuth, ux, uy);
   const OverviewPyramid& p = *pyramid_;
-  double best = -std::numeric_limits<double>::infinity();
-  const double c = s_.curvature;
   const int first = far_field_first_level(s_, p.first_level());
   // Where the ray leaves the raster: a level's last row and column of cells reach past its edge,
-  // and their maxima stand for terrain the ray never passes over (which the bound does not cover).
+  // and their extremes stand for terrain the ray never passes over (which the bound does not cover).
   const double t_exit = std::min(ux > 0 ? (width_ - x0) / ux : (ux < 0 ? -x0 / ux : INFINITY),
                                  uy > 0 ? (height_ - y0) / uy : (uy < 0 ? -y0 / uy : INFINITY));
   for (int l = first; l <= p.last_level(); ++l) {
     const Grid<float>& g = p.level(l);
     const double size = std::ldexp(1.0, l);  // raster cells per level cell
     const double t_a = level_start(s_, l, first);
-    if (t_a >= t_exit) break;
+    if (t_a >= t_exit) return;
     const double t_b = std::min(t_exit, l == p.last_level() ? INFINITY : level_start(s_, l + 1, first));
     // An exact walk over the level's cells the ray crosses in [t_a, t_b) (Amanatides and Woo).
     const double px = (x0 + ux * t_a) / size, py = (y0 + uy * t_a) / size;
@@ -195,11 +197,9 @@ double FarField::far_tangent(double x0, double y0, double z0, double azimuth) co
     while (t < t_b) {
       // Left the raster: no way back along a straight ray.
       if ((i < 0 && si <= 0) || (j < 0 && sj <= 0) || (i >= g.width() && si >= 0) || (j >= g.height() && sj >= 0))
-        return best;
-      if (i >= 0 && j >= 0 && i < g.width() && j < g.height()) {
-        const float z = g(i, j);
-        if (!std::isnan(z)) best = std::max(best, (z - z0 - c * t * t) / t);
-      }
+        return;
+      const double out = std::min({next_x, next_y, t_b});  // where the ray leaves this cell
+      if (i >= 0 && j >= 0 && i < g.width() && j < g.height()) visit(l, i, j, t, out);
       if (next_x < next_y) {
         t = next_x, next_x += dx, i += si;
       } else {
@@ -207,7 +207,29 @@ double FarField::far_tangent(double x0, double y0, double z0, double azimuth) co
       }
     }
   }
+}
+
+double FarField::far_tangent(double x0, double y0, double z0, double azimuth) const {
+  double best = -std::numeric_limits<double>::infinity();
+  const double c = s_.curvature;
+  march(x0, y0, azimuth, [&](int l, int i, int j, double t, double) {
+    const float z = pyramid_->level(l)(i, j);
+    if (!std::isnan(z)) best = std::max(best, (z - z0 - c * t * t) / t);
+  });
   return best;
+}
+
+double FarField::far_low_tangent(double x0, double y0, double z0, double azimuth) const {
+  double lowest = std::numeric_limits<double>::infinity();
+  const double c = s_.curvature;
+  // (m - z0)/d - c d is concave in d below z0 and falls with d above it: its least over the
+  // ray's stretch in a block is at one of the stretch's ends.
+  march(x0, y0, azimuth, [&](int l, int i, int j, double t, double out) {
+    const float m = pyramid_->minima(l)(i, j);
+    if (std::isnan(m)) return;
+    lowest = std::min({lowest, (m - z0 - c * t * t) / t, (m - z0 - c * out * out) / out});
+  });
+  return lowest;
 }
 
 void FarField::raise(const Terrain& terrain, const Window& window, const HorizonField& field, int k,
@@ -221,6 +243,22 @@ void FarField::raise(const Terrain& terrain, const Window& window, const Horizon
       const double tangent = far_tangent(col + terrain.origin_col + 0.5, row + terrain.origin_row + 0.5,
                                          terrain.heights(col, row), field.azimuth(cell, k));
       if (tangent > -INFINITY) h = std::max(h, static_cast<float>(std::atan(tangent)));
+    }
+  });
+}
+
+void FarField::lower(const Terrain& terrain, const Window& window, const HorizonField& field, int k,
+                     float* lower) const {
+  if (!pyramid_->has_minima()) return;
+  tbb::parallel_for(0, window.rows, [&](int wr) {
+    for (int wc = 0; wc < window.cols; ++wc) {
+      const std::size_t cell = static_cast<std::size_t>(wr) * window.cols + wc;
+      float& h = lower[cell];
+      if (std::isnan(h)) continue;
+      const int col = window.col0 + wc, row = window.row0 + wr;
+      const double tangent = far_low_tangent(col + terrain.origin_col + 0.5, row + terrain.origin_row + 0.5,
+                                             terrain.heights(col, row), field.azimuth(cell, k));
+      if (tangent < INFINITY) h = std::min(h, static_cast<float>(std::atan(tangent)));
     }
   });
 }

@@ -19,15 +19,19 @@ namespace skyview {
 // `first_level` (cells of 2^first_level x 2^first_level raster cells) up to one cell.
 class OverviewPyramid {
  public:
-  // Reads the raster once, a strip of rows at a time (never whole).
-  OverviewPyramid(const TerrainReader& reader, int first_level);
+  // Reads the raster once, a strip of rows at a time (never whole). With `keep_minima` the levels'
+  // minima are kept too (min-pooled, for the lowest angles of negative openness).
+  OverviewPyramid(const TerrainReader& reader, int first_level, bool keep_minima = false);
   // Pyramid of a terrain already in memory (tests).
-  OverviewPyramid(const Terrain& terrain, int first_level);
+  OverviewPyramid(const Terrain& terrain, int first_level, bool keep_minima = false);
 
   int first_level() const { return first_; }
   int last_level() const { return first_ + static_cast<int>(max_.size()) - 1; }
   // Level l's maxima (NaN where every cell below is nodata).
   const Grid<float>& level(int l) const { return max_[static_cast<std::size_t>(l - first_)]; }
+  // Level l's minima (of the same grown blocks); only where kept.
+  bool has_minima() const { return !min_.empty(); }
+  const Grid<float>& minima(int l) const { return min_[static_cast<std::size_t>(l - first_)]; }
   // The largest relief (maximum less minimum) within one cell of level l, metres.
   double relief(int l) const { return relief_[static_cast<std::size_t>(l - first_)]; }
   // The raster's lowest and highest valid heights (relative to the base height).
@@ -39,7 +43,7 @@ class OverviewPyramid {
   void add_rows(const Grid<float>& heights, int row0, int rows, std::vector<Grid<float>>& minima);
   void build_levels(std::vector<Grid<float>>& minima);
   int first_ = 1, width_ = 0, height_ = 0;
-  std::vector<Grid<float>> max_;
+  std::vector<Grid<float>> max_, min_;
   std::vector<double> relief_;
   double lo_ = INFINITY, hi_ = -INFINITY;
 };
@@ -73,12 +77,21 @@ class FarField final : public FarHorizons {
            int raster_width, int raster_height);
   void raise(const Terrain& terrain, const Window& window, const HorizonField& field, int k,
              float* upper) const override;
+  // With the pyramid's minima: the lowest far angle, from each crossed block's minimum at whichever
+  // end of the ray's stretch in it gives the lower angle (never above the exact one).
+  void lower(const Terrain& terrain, const Window& window, const HorizonField& field, int k,
+             float* lower) const override;
   // The tangent of the highest far-field angle from a point at raster pixel (x, y) (cell centres at
   // .5) and height z along azimuth `azimuth`; -inf where the ray meets no valid cell beyond H.
   double far_tangent(double x, double y, double z, double azimuth) const;
+  // The tangent of the lowest far-field angle likewise (needs the minima); +inf where none.
+  double far_low_tangent(double x, double y, double z, double azimuth) const;
   const FarFieldSettings& settings() const { return s_; }
 
  private:
+  // Walks the crossed cells of every level beyond H: visit(level, i, j, entry, exit distance).
+  template <class Visit>
+  void march(double x, double y, double azimuth, Visit&& visit) const;
   std::shared_ptr<const OverviewPyramid> pyramid_;
   FarFieldSettings s_;
   Jacobian centre_;
