@@ -169,11 +169,13 @@ seed_pyramid() {
 python3 - "$1" <<'EOF'
 import math, os, struct, sys
 
-def pyramid(width, height, levels, lo, hi, source):
-    body = b"SKYVPYRM" + struct.pack("<5I", 1, 1, width, height, len(levels)) + struct.pack("<2d", lo, hi)
+def pyramid(width, height, levels, lo, hi, source, minima=None):
+    flags = 1 if minima else 0
+    body = b"SKYVPYRM" + struct.pack("<6I", 2, 1, width, height, len(levels), flags) + struct.pack("<2d", lo, hi)
     body += struct.pack("<I", len(source)) + source
     body += b"".join(struct.pack("<d", relief) for relief, _ in levels)
     body += b"".join(struct.pack("<%df" % len(cells), *cells) for _, cells in levels)
+    body += b"".join(struct.pack("<%df" % len(cells), *cells) for cells in (minima or []))
     h = 0xcbf29ce484222325
     for b in body:
         h = ((h ^ b) * 0x100000001b3) & 0xFFFFFFFFFFFFFFFF
@@ -183,6 +185,8 @@ with open(os.path.join(sys.argv[1], "small.bin"), "wb") as f:
     f.write(pyramid(3, 2, [(2.0, [1.0, 3.0]), (2.0, [3.0])], 1.0, 3.0, b'{"input":"dsm.tif"}'))
 with open(os.path.join(sys.argv[1], "nodata.bin"), "wb") as f:
     f.write(pyramid(3, 2, [(0.0, [math.nan, 0.5]), (0.0, [0.5])], 0.5, 0.5, b""))
+with open(os.path.join(sys.argv[1], "minima.bin"), "wb") as f:
+    f.write(pyramid(3, 2, [(2.0, [1.0, 3.0]), (2.0, [3.0])], 1.0, 3.0, b"", [[1.0, 1.0], [1.0]]))
 EOF
 }
 

@@ -4,6 +4,7 @@
 #include <optional>
 #include <set>
 
+#include "far_field_job.h"
 #include "horizon_job.h"
 #include "preview_options.h"
 #include "sky_job.h"
@@ -110,6 +111,7 @@ int run(Options& o) {
   HorizonJob job = prepare_horizon_job(o.job, "exposure", {o.preview.path}, &o.tiling);
   if (o.tiling.options.tiles_dir.empty())
     check_output_format(o.job.output, o.job.out.format, kBandCount, o.job.out.creation_options);
+  check_far_field_option(*o.app, job);
   if (job.tiles.tiled && !o.preview.path.empty())
     throw UsageError("--preview needs the whole raster, and the run goes by tiles (" + job.tiles.why + ")");
   // A tiled run holds only a window about the raster's centre (HorizonJob::terrain).
@@ -125,6 +127,7 @@ int run(Options& o) {
   }
   ExposureRequest& request = exposure.request;
   request.edge = job.edge;
+  request.far_field = job.far_field;
   const ExposureSky& sky = exposure.sky;
   const double global_horizontal = exposure.global_horizontal;
   for (const auto& [key, value] : exposure.metadata) meta[key] = value;
@@ -154,7 +157,7 @@ int run(Options& o) {
                   " in " + std::to_string(job.tiles.tiles) + " tiles of " + std::to_string(job.tiles.tile_size) +
                       " cells (halo " + std::to_string(job.tiles.halo) +
                       (job.tiles.skipped > 0 ? ", " + std::to_string(job.tiles.skipped) + " already finished" : "") +
-                      ")");
+                      far_field_summary(job) + ")");
     return 0;
   }
 
@@ -198,6 +201,7 @@ Runner setup(CLI::App& app) {
   o->job.azimuth_origin = "grid";  // exposure sums over azimuth
   add_horizon_job_options(app, o->job);
   add_tiling_options(app, o->tiling.options);
+  add_far_field_option(app, o->tiling, "");
   app.add_option("--method", o->method,
                  "fast: the exposure map sampled per horizon direction (Section 6 of the paper); exact: the beam of "
                  "every time step against the horizon at the sun's azimuth and the sky at the map's full resolution")

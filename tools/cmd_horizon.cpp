@@ -2,8 +2,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
+#include "far_field_job.h"
 #include "horizon_job.h"
 #include "preview_options.h"
 #include "skyview/core/error.h"
@@ -22,8 +24,10 @@ std::int64_t write_horizons(const HorizonJob& job, const Terrain& terrain, const
                             Grid<float>* drawn_values = nullptr) {
   const int n = job.engine->params().directions;
   std::int64_t edge_cells = 0;
-  const std::vector<unsigned char> blank = horizon_blank_cells(job, terrain, window, edge_cells);  // nodata
-  std::vector<float> degrees;
+  // A tiled run without --radius searches without limit: the far field beyond its halo.
+  const std::vector<unsigned char> blank = horizon_blank_cells(
+      job, terrain, window, edge_cells, job.far_field ? std::optional<double>(INFINITY) : std::nullopt);  // nodata
+  std::vector<float> degrees, raised;
   // Rows [row0, row0 + rows) of the window for direction k from its plane of radians over those rows.
   auto write_rows = [&](int k, int row0, int rows, const float* radians) {
     const std::size_t first = static_cast<std::size_t>(row0) * window.cols,
@@ -43,14 +47,23 @@ std::int64_t write_horizons(const HorizonJob& job, const Terrain& terrain, const
     HorizonField rest;
     job.engine->compute_directions(terrain, window, rest, progress,
                                    [&](int first, int count, const float* upper, const float*) {
-                                     for (int j = 0; j < count; ++j)
-                                       write_rows(first + j, 0, window.rows, upper + window.cells() * j);
+                                     for (int j = 0; j < count; ++j) {
+                                       const float* plane = upper + window.cells() * j;
+                                       if (job.far_field) {
+                                         raised.assign(plane, plane + window.cells());
+                                         job.far_field->raise(terrain, window, rest, first + j, raised.data());
+                                         plane = raised.data();
+                                       }
+                                       write_rows(first + j, 0, window.rows, plane);
+                                     }
                                    });
   } else {
     compute_by_row_blocks(*job.engine, terrain, window, progress, kHorizonBlockBytes, out.block_rows(),
                           [&](const Window& block, HorizonField& field) {
-                            for (int k = 0; k < n; ++k)
+                            for (int k = 0; k < n; ++k) {
+                              if (job.far_field) job.far_field->raise(terrain, block, field, k, field.upper_plane(k));
                               write_rows(k, block.row0 - window.row0, block.rows, field.upper_plane(k));
+                            }
                           });
   }
   return edge_cells;
@@ -64,6 +77,7 @@ Runner setup(CLI::App& app) {
   add_preview_options(app, *preview,
                       "Also write a PNG of the first direction's band, or --preview-band's (horizon_azimuth_90)");
   add_tiling_options(app, tiling->options);
+  add_far_field_option(app, *tiling, "--max-error, else ");
   tiling->memory = [](const HorizonEngine& engine) { return horizon_memory(engine); };
   app.footer(
       "One band per direction, in degrees above the horizontal; band k is centred on azimuth 360*k/N (plus "
@@ -76,6 +90,7 @@ Runner setup(CLI::App& app) {
     HorizonJobOptions opts = *o;
     opts.params.rays = 0;  // the ray cast's Monte-Carlo svf is not a horizon band
     HorizonJob job = prepare_horizon_job(opts, "horizon", {preview->path}, tiling.get());
+    check_far_field_option(app, job);
     if (job.tiles.tiled && !preview->path.empty())
       throw UsageError("--preview needs the whole raster, and the run goes by tiles (" + job.tiles.why + ")");
     const int w = job.width(), h = job.height(), n = job.engine->params().directions;
@@ -148,10 +163,10 @@ Runner setup(CLI::App& app) {
     summary.print(std::to_string(w) + "x" + std::to_string(h) + " cells, " + std::to_string(n) +
                       " direction bands by " + std::string(job.engine->name()) + "; " + std::to_string(edge_cells) +
                       " cells whose search leaves the raster" +
-                      (job.tiles.tiled
-                           ? "; " + std::to_string(job.tiles.tiles) + " tiles of " +
-                                 std::to_string(job.tiles.tile_size) + " cells, halo " + std::to_string(job.tiles.halo)
-                           : ""),
+                      (job.tiles.tiled ? "; " + std::to_string(job.tiles.tiles) + " tiles of " +
+                                             std::to_string(job.tiles.tile_size) + " cells, halo " +
+                                             std::to_string(job.tiles.halo) + far_field_summary(job)
+                                       : ""),
                   o->out.quiet);
     return 0;
   };

@@ -10,21 +10,12 @@
 #include "skyview/sky_view/svf_run.h"
 #include "skyview/tiling/memory_budget.h"
 
+#include "far_field_job.h"
 #include "horizon_job.h"
 #include "preview_options.h"
 
 namespace skyview::cli {
 namespace {
-
-// The far field on the summary line: where it starts and the svf error it may cause.
-std::string far_field_text(const HorizonJob& job) {
-  if (!job.far_field) return "";
-  if (job.metadata.at("FAR_FIELD").starts_with("none")) return ", the halo holds the whole raster: exact";
-  char text[96];
-  std::snprintf(text, sizeof text, ", far field beyond %.4g m with svf error at most %.2g", job.far_halo_m,
-                std::stod(job.metadata.at("FAR_FIELD_BOUND_SVF")));
-  return text;
-}
 
 // The run tile by tile: each tile's window plus halo through the same run_svf as a whole run, its
 // own cells written into the output's window.
@@ -66,7 +57,7 @@ int run_tiled_svf(const HorizonJobOptions& o, const TilingOptions& tiling, const
                     std::to_string(job.tiles.tiles) + " tiles of " + std::to_string(job.tiles.tile_size) +
                     " cells (halo " + std::to_string(job.tiles.halo) + " cells" +
                     (job.tiles.skipped > 0 ? ", " + std::to_string(job.tiles.skipped) + " already finished" : "") +
-                    far_field_text(job) + "); " + total.first_band.text(total.first_band_name),
+                    far_field_summary(job) + "); " + total.first_band.text(total.first_band_name),
                 o.out.quiet);
   return 0;
 }
@@ -94,11 +85,7 @@ Runner setup(CLI::App& app) {
             }
           },
           "LIST"));
-  app.add_option("--far-field-error", tiling->far_error,
-                 "Tiled runs without --radius: the largest svf error the far field beyond each tile's halo may cause "
-                 "(a proven bound, docs/tiling.md); the halo is made as wide as it needs (default: --max-error, "
-                 "else 0.01)")
-      ->check(number_above(0.0, 1.0));
+  add_far_field_option(app, *tiling, "--max-error, else ");
   app.add_option("--check-cells", *check_cells,
                  "Measure the svf's error on this many random cells against exact horizons and record it in the "
                  "metadata (SVF_CHECK_*); with --max-error (default 1000 cells) a run whose measured p99 exceeds the "
@@ -125,7 +112,6 @@ Runner setup(CLI::App& app) {
     ProductSet keep = ProductSet::none();
     for (const SvfProductInfo* c : parse_svf_products(*products)) keep.add(c->product);
     const int n_products = static_cast<int>(parse_svf_products(*products).size());
-    tiling->far_field = true;
     tiling->memory = [keep, n_products](const HorizonEngine& engine) {
       return svf_memory(engine, keep, n_products + (engine.name() == "raycast" && engine.params().rays > 0 ? 2 : 0));
     };
@@ -138,9 +124,7 @@ Runner setup(CLI::App& app) {
     const int n_bands = n_products + (monte_carlo ? 2 : 0);
     if (tiling->options.tiles_dir.empty())
       check_output_format(o->output, o->out.format, n_bands, o->out.creation_options);
-    if (app.count("--far-field-error") > 0 && !job.far_field)
-      throw UsageError(
-          "--far-field-error applies to tiled runs without --radius (the far field beyond each tile's halo)");
+    check_far_field_option(app, job);
     if (job.tiles.tiled) {
       // What needs the whole raster at once: the check's random cells (and --max-error's reruns on
       // them), the preview picture.

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "far_field_pyramid.h"
 #include "horizon_job.h"
+#include "skyview/core/error.h"
 #include "skyview/core/number_text.h"
 #include "skyview/tiling/far_field.h"
 
@@ -17,7 +19,7 @@ std::uint64_t pyramid_budget(const TilePlan& plan) {
   return std::max<std::uint64_t>(std::uint64_t{64} << 20, plan.limit / 8);
 }
 
-// The finest first level whose pyramid (maxima and, while it is built, minima: 8 bytes a cell,
+// The finest first level whose pyramid (maxima and minima, kept for negative openness: 8 bytes a cell,
 // 4/3 of the first level's cells in all) fits the budget.
 int pyramid_first_level(int width, int height, std::uint64_t budget) {
   int l = 1;
@@ -43,7 +45,9 @@ void prepare_far_field(HorizonJob& job, double max_error) {
   s.cell_m = centre.min_cell_size();
   s.diagonal_m = std::max(centre.metres(1, 1), centre.metres(1, -1));
   s.curvature = curvature;
-  const auto pyramid = run_pyramid(job, pyramid_first_level(w, h, pyramid_budget(job.tiles)));
+  // The lowest angles (negative openness) read the levels' minima too.
+  const bool lowest = job.engine->params().lower;
+  const auto pyramid = run_pyramid(job, pyramid_first_level(w, h, pyramid_budget(job.tiles)), lowest);
   // The smallest halo (in steps of 10%) whose bound meets the error asked; the whole raster's
   // reach where none does (then no far field is left).
   const double error = max_error >= 0 ? max_error : kDefaultFarFieldError;
@@ -86,8 +90,41 @@ void prepare_far_field(HorizonJob& job, double max_error) {
   m["FAR_FIELD_BOUND_SVF"] = number_text(bound.svf);
   m["FAR_FIELD_BOUND_SKY_VISIBILITY"] = number_text(bound.sky_visibility);
   m["FAR_FIELD_BOUND_ANGLE_DEG"] = number_text(bound.angle * 180 / M_PI);
+  m["FAR_FIELD_BOUND_HORIZON_DEG"] = number_text(bound.horizon * 180 / M_PI);
+  if (lowest && halo < diagonal) {
+    m["FAR_FIELD_OPENNESS_NEGATIVE"] =
+        "the lowest angles beyond the halo from the pyramid's minima (min-pooled), never above the exact ones: "
+        "openness_negative within FAR_FIELD_BOUND_HORIZON_DEG degrees";
+  }
   m["FAR_FIELD_ERROR_ASKED"] = number_text(error) + (max_error >= 0 ? " (asked)" : " (default)");
   m["FAR_FIELD_PYRAMID_BYTES"] = std::to_string(pyramid->bytes());
+}
+
+void add_far_field_option(CLI::App& app, TileRequest& tiling, const std::string& asked_by) {
+  tiling.far_field = true;
+  app.add_option("--far-field-error", tiling.far_error,
+                 "Tiled runs without --radius: the largest svf error the far field beyond each tile's halo may cause "
+                 "(a proven bound, docs/tiling.md; horizon angles then err by at most FAR_FIELD_BOUND_HORIZON_DEG, "
+                 "recorded in the output); the halo is made as wide as it needs (default: " +
+                     asked_by + number_text(kDefaultFarFieldError) + ")")
+      ->check(number_above(0.0, 1.0));
+}
+
+void check_far_field_option(const CLI::App& app, const HorizonJob& job) {
+  if (app.count("--far-field-error") > 0 && !job.far_field)
+    throw UsageError(
+        "--far-field-error applies to tiled runs without --radius (the far field beyond each tile's halo)");
+}
+
+std::string far_field_summary(const HorizonJob& job) {
+  if (!job.far_field) return "";
+  if (job.metadata.at("FAR_FIELD").starts_with("none")) return ", the halo holds the whole raster: exact";
+  char text[160];
+  std::snprintf(text, sizeof text,
+                ", far field beyond %.4g m with svf error at most %.2g and horizon angles within %.2g degrees",
+                job.far_halo_m, std::stod(job.metadata.at("FAR_FIELD_BOUND_SVF")),
+                std::stod(job.metadata.at("FAR_FIELD_BOUND_HORIZON_DEG")));
+  return text;
 }
 
 }  // namespace skyview::cli

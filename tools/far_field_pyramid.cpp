@@ -13,9 +13,10 @@ namespace skyview::cli {
 
 namespace {
 
-// The kept pyramid where it is of this input and first level; nullptr where there is none (or it
-// is not this run's, or damaged: then built again, which costs a read of the raster, not a result).
-std::shared_ptr<const OverviewPyramid> kept_pyramid(HorizonJob& job, int first_level) {
+// The kept pyramid where it is of this input and first level (and holds minima where the run needs
+// them); nullptr where there is none (or it is not this run's, or damaged: then built again, which
+// costs a read of the raster, not a result).
+std::shared_ptr<const OverviewPyramid> kept_pyramid(HorizonJob& job, int first_level, bool minima) {
   const TilePlan& plan = job.tiles;
   std::error_code ec;
   if (plan.pyramid_file.empty() || !std::filesystem::exists(plan.pyramid_file, ec)) return nullptr;
@@ -23,7 +24,7 @@ std::shared_ptr<const OverviewPyramid> kept_pyramid(HorizonJob& job, int first_l
     std::string source;
     PyramidLevels p = read_pyramid_file(plan.pyramid_file, &source);
     if (source != plan.pyramid_source || p.first_level != first_level || p.width != job.reader->width() ||
-        p.height != job.reader->height())
+        p.height != job.reader->height() || (minima && p.min.empty()))
       return nullptr;
     return std::make_shared<OverviewPyramid>(std::move(p));
   } catch (const Error& e) {
@@ -34,13 +35,13 @@ std::shared_ptr<const OverviewPyramid> kept_pyramid(HorizonJob& job, int first_l
 
 }  // namespace
 
-std::shared_ptr<const OverviewPyramid> run_pyramid(HorizonJob& job, int first_level) {
+std::shared_ptr<const OverviewPyramid> run_pyramid(HorizonJob& job, int first_level, bool minima) {
   TileRanks& ranks = TileRanks::world();
   std::shared_ptr<const OverviewPyramid> pyramid;
   auto make = [&] {
-    pyramid = kept_pyramid(job, first_level);
+    pyramid = kept_pyramid(job, first_level, minima);
     job.tiles.pyramid_reused = pyramid != nullptr;
-    if (!pyramid) pyramid = std::make_shared<OverviewPyramid>(*job.reader, first_level);
+    if (!pyramid) pyramid = std::make_shared<OverviewPyramid>(*job.reader, first_level, minima);
   };
   if (!ranks.parallel()) {
     make();

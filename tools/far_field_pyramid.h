@@ -15,10 +15,11 @@ struct HorizonJob;
 // The file's name in the tiles folder.
 inline constexpr const char* kPyramidFileName = "far_field_pyramid.bin";
 
-// The pyramid of the job's raster from `first_level` on. A kept file that is damaged or foreign is
-// built again (with a warning); one of another input or first level is built again silently. Sets
+// The pyramid of the job's raster from `first_level` on, with its minima where `minima` (negative
+// openness). A kept file that is damaged or foreign is built again (with a warning); one of another
+// input or first level, or without the minima asked for, is built again silently. Sets
 // job.tiles.pyramid_reused on rank 0 where it was read from the folder.
-std::shared_ptr<const OverviewPyramid> run_pyramid(HorizonJob& job, int first_level);
+std::shared_ptr<const OverviewPyramid> run_pyramid(HorizonJob& job, int first_level, bool minima);
 
 // Rank 0 of a --tiles-dir run at unlimited radius, once the manifest is the run's: writes the
 // pyramid into the folder (unless it was read from there) and records it in `manifest`. Returns

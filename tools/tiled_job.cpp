@@ -22,9 +22,8 @@ void add_tiling_options(CLI::App& app, TilingOptions& o) {
   o.app = &app;
   app.add_option("--tile-size", o.tile_size,
                  "Compute tile by tile, each tile this many cells square, reading its window plus a halo as wide "
-                 "as --radius through GDAL (never the whole raster); results are the same as a whole run's. horizon "
-                 "and exposure need a finite --radius; svf without one adds a far field beyond a halo chosen by "
-                 "--far-field-error");
+                 "as --radius through GDAL (never the whole raster); results are the same as a whole run's. Without "
+                 "--radius a far field beyond a halo chosen by --far-field-error bounds the error (docs/tiling.md)");
   app.add_option("--tiles-dir", o.tiles_dir,
                  "Write one GeoTIFF per tile into this folder (tile_<row>_<col>.tif, created if missing) and a VRT "
                  "mosaic of them at the output (which must end in .vrt), with a manifest (manifest.json) that lets a "

@@ -96,14 +96,18 @@ ExposureBands compute_exposure(const HorizonEngine& engine, const Terrain& terra
       views.add(first, count, upper, nullptr, field);
     }
     void finish() override {
-      const SkyViewProducts products = views.finish(engine.radius(), request.edge);
+      const SkyViewProducts products = views.finish(request.far_field ? INFINITY : engine.radius(), request.edge);
       out.edge_cells += products.edge_cells;
       sums.finish(products, row0, out);
     }
   };
-  detail::feed_horizons(engine, terrain, window, progress, request.horizon_bytes, [&](const Window& block) {
-    return std::make_unique<Consumer>(terrain, block, setup, n, keep, engine, request, block.row0 - window.row0, out);
-  });
+  detail::feed_horizons(
+      engine, terrain, window, progress, request.horizon_bytes,
+      [&](const Window& block) {
+        return std::make_unique<Consumer>(terrain, block, setup, n, keep, engine, request, block.row0 - window.row0,
+                                          out);
+      },
+      request.far_field.get());
   if (setup.albedo_grid) {
     for (std::size_t i = 0; i < out.direct.size(); ++i) {
       out.albedo_nodata_cells += !std::isnan(out.direct.values()[i]) && std::isnan(request.albedo_grid.values()[i]);

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "skyview/horizon/horizon_engine.h"
+#include "skyview/sky_view/sky_view.h"
 
 namespace skyview::detail {
 
@@ -23,7 +24,9 @@ class HorizonConsumer {
 
 using ConsumerFactory = std::function<std::unique_ptr<HorizonConsumer>(const Window& block)>;
 
+// With `far` (a tiled run's far field), every direction's upper angles are raised by it before the
+// consumer sees them.
 void feed_horizons(const HorizonEngine& engine, const Terrain& terrain, const Window& window, ProgressCounter& progress,
-                   std::size_t horizon_bytes, const ConsumerFactory& consumer_for);
+                   std::size_t horizon_bytes, const ConsumerFactory& consumer_for, const FarHorizons* far = nullptr);
 
 }  // namespace skyview::detail

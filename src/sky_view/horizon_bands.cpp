@@ -28,14 +28,15 @@ std::vector<DirectionBand> direction_bands(const HorizonSetup& setup) {
 }
 
 std::vector<unsigned char> horizon_blank_cells(const HorizonSetup& setup, const Terrain& terrain, const Window& window,
-                                               std::int64_t& edge_cells) {
+                                               std::int64_t& edge_cells, std::optional<double> radius) {
+  const double searched = radius.value_or(setup.engine->radius());
   std::vector<unsigned char> blank(static_cast<std::size_t>(window.cells()));
   edge_cells = 0;
   for (int r = 0; r < window.rows; ++r) {
     for (int c = 0; c < window.cols; ++c) {
       const int tc = window.col0 + c, tr = window.row0 + r;
       const bool valid = terrain.valid(tc, tr);
-      const bool leaves = valid && search_circle_leaves_raster(terrain, tc, tr, setup.engine->radius());
+      const bool leaves = valid && search_circle_leaves_raster(terrain, tc, tr, searched);
       edge_cells += leaves;
       blank[static_cast<std::size_t>(r) * window.cols + c] = !valid || (setup.edge == EdgeMode::nodata && leaves);
     }

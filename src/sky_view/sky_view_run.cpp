@@ -18,7 +18,10 @@ void copy_rows(const Grid<float>& from, Grid<float>& to, int r0) {
 // Every direction of `field` (over `window`) raised by the far field, if any.
 void raise_all(const FarHorizons* far, const Terrain& terrain, const Window& window, HorizonField& field) {
   if (!far) return;
-  for (int k = 0; k < field.directions; ++k) far->raise(terrain, window, field, k, field.upper_plane(k));
+  for (int k = 0; k < field.directions; ++k) {
+    far->raise(terrain, window, field, k, field.upper_plane(k));
+    if (!field.lower.empty()) far->lower(terrain, window, field, k, field.lower_plane(k));
+  }
 }
 
 // Methods that find all of a cell's directions together go by blocks of whole rows, each turned
@@ -80,13 +83,18 @@ SkyViewProducts compute_sky_view(const HorizonEngine& engine, const Terrain& ter
     return sky_view_products(terrain, window, field, radius, edge);
   }
   SkyViewSums sums(terrain, window, n, keep);
-  std::vector<float> raised;  // a batch's planes raised by the far field
+  std::vector<float> raised, lowered;  // a batch's planes moved by the far field
   const DirectionBatchSink take = [&](int first, int count, const float* upper, const float* lower) {
     if (far) {
       const std::size_t cells = static_cast<std::size_t>(window.cols) * window.rows;
       raised.assign(upper, upper + cells * count);
       for (int k = 0; k < count; ++k) far->raise(terrain, window, field, first + k, raised.data() + cells * k);
       upper = raised.data();
+      if (lower) {
+        lowered.assign(lower, lower + cells * count);
+        for (int k = 0; k < count; ++k) far->lower(terrain, window, field, first + k, lowered.data() + cells * k);
+        lower = lowered.data();
+      }
     }
     sums.add(first, count, upper, lower, field);
   };

@@ -21,7 +21,7 @@ int cells_at(int n, int level) { return static_cast<int>((static_cast<std::int64
 
 }  // namespace
 
-OverviewPyramid::OverviewPyramid(const TerrainReader& reader, int first_level) {
+OverviewPyramid::OverviewPyramid(const TerrainReader& reader, int first_level, bool keep_minima) {
   p_.first_level = std::max(1, first_level);
   p_.width = reader.width();
   p_.height = reader.height();
@@ -33,15 +33,17 @@ OverviewPyramid::OverviewPyramid(const TerrainReader& reader, int first_level) {
     add_rows(strip.heights, row0, rows, minima);
   }
   build_levels(minima);
+  if (keep_minima) p_.min = std::move(minima);
 }
 
-OverviewPyramid::OverviewPyramid(const Terrain& terrain, int first_level) {
+OverviewPyramid::OverviewPyramid(const Terrain& terrain, int first_level, bool keep_minima) {
   p_.first_level = std::max(1, first_level);
   p_.width = terrain.width();
   p_.height = terrain.height();
   std::vector<Grid<float>> minima;
   add_rows(terrain.heights, 0, p_.height, minima);
   build_levels(minima);
+  if (keep_minima) p_.min = std::move(minima);
 }
 
 // Each raster cell raises the maximum (and lowers the minimum) of every first-level cell whose
@@ -120,6 +122,7 @@ void OverviewPyramid::build_levels(std::vector<Grid<float>>& minima) {
 std::uint64_t OverviewPyramid::bytes() const {
   std::uint64_t n = 0;
   for (const Grid<float>& g : p_.max) n += g.size() * sizeof(float);
+  for (const Grid<float>& g : p_.min) n += g.size() * sizeof(float);
   return n;
 }
 
@@ -147,15 +150,19 @@ FarFieldBound far_field_bound(const OverviewPyramid& pyramid, const FarFieldSett
   // A far angle read from level l at entry distance d (>= the level's start) differs from the
   // exact one along the same ray by at most (relief + c (2 d l + l^2) + l t) / d, l the block's
   // diagonal (docs/tiling.md).
-  double refined = 0;
+  double refined = 0, below = 0;
   const int first = far_field_first_level(s, pyramid.first_level());
   for (int l = first; l <= pyramid.last_level(); ++l) {
     const double d = level_start(s, l, first);
     if (d >= raster_diagonal_m) break;
     const double diag = std::ldexp(s.diagonal_m, l);
     refined = std::max(refined, (pyramid.relief(l) + s.curvature * (2 * d * diag + diag * diag) + diag * t) / d);
+    // Below the horizontal the block's entry distance can also make the far angle too low: by at
+    // most the block's length times |dh/dd| <= (R + c d'^2) / d^2, d' <= d + diag.
+    below = std::max(below, diag * (t + s.curvature * (1 + diag / d) * (1 + diag / d) * d) / d);
   }
   b.angle = std::min(crude, refined);
+  b.horizon = std::max(refined, below);
   // Both horizons lie in [0, atan t] where they differ in these bands (max(h, 0)): the sine
   // squared moves by at most sin(2 h) dh there, the sine by at most dh.
   b.svf = std::min(std::sin(crude) * std::sin(crude), std::sin(std::min(2 * crude, M_PI / 2)) * b.angle);
@@ -167,18 +174,22 @@ FarField::FarField(std::shared_ptr<const OverviewPyramid> pyramid, const FarFiel
                    int raster_width, int raster_height)
     : pyramid_(std::move(pyramid)), s_(s), centre_(centre), width_(raster_width), height_(raster_height) {}
 
-double FarField::far_tangent(double x0, double y0, double z0, double azimuth) const {
+template <class Visit>
+void FarField::march(double x0, double y0, double azimuth, Visit&& visit) const {
   double ux = 0, uy = 0;  // pixels per metre along the ray
   centre_.pixel_step_for_azimuth(azimuth, ux, uy);
   const OverviewPyramid& p = *pyramid_;
-  double best = -std::numeric_limits<double>::infinity();
-  const double c = s_.curvature;
   const int first = far_field_first_level(s_, p.first_level());
+  // Where the ray leaves the raster: a level's last row and column of cells reach past its edge,
+  // and their extremes stand for terrain the ray never passes over (which the bound does not cover).
+  const double t_exit = std::min(ux > 0 ? (width_ - x0) / ux : (ux < 0 ? -x0 / ux : INFINITY),
+                                 uy > 0 ? (height_ - y0) / uy : (uy < 0 ? -y0 / uy : INFINITY));
   for (int l = first; l <= p.last_level(); ++l) {
     const Grid<float>& g = p.level(l);
     const double size = std::ldexp(1.0, l);  // raster cells per level cell
     const double t_a = level_start(s_, l, first);
-    const double t_b = l == p.last_level() ? INFINITY : level_start(s_, l + 1, first);
+    if (t_a >= t_exit) return;
+    const double t_b = std::min(t_exit, l == p.last_level() ? INFINITY : level_start(s_, l + 1, first));
     // An exact walk over the level's cells the ray crosses in [t_a, t_b) (Amanatides and Woo).
     const double px = (x0 + ux * t_a) / size, py = (y0 + uy * t_a) / size;
     int i = static_cast<int>(std::floor(px)), j = static_cast<int>(std::floor(py));
@@ -190,11 +201,9 @@ double FarField::far_tangent(double x0, double y0, double z0, double azimuth) co
     while (t < t_b) {
       // Left the raster: no way back along a straight ray.
       if ((i < 0 && si <= 0) || (j < 0 && sj <= 0) || (i >= g.width() && si >= 0) || (j >= g.height() && sj >= 0))
-        return best;
-      if (i >= 0 && j >= 0 && i < g.width() && j < g.height()) {
-        const float z = g(i, j);
-        if (!std::isnan(z)) best = std::max(best, (z - z0 - c * t * t) / t);
-      }
+        return;
+      const double out = std::min({next_x, next_y, t_b});  // where the ray leaves this cell
+      if (i >= 0 && j >= 0 && i < g.width() && j < g.height()) visit(l, i, j, t, out);
       if (next_x < next_y) {
         t = next_x, next_x += dx, i += si;
       } else {
@@ -202,7 +211,29 @@ double FarField::far_tangent(double x0, double y0, double z0, double azimuth) co
       }
     }
   }
+}
+
+double FarField::far_tangent(double x0, double y0, double z0, double azimuth) const {
+  double best = -std::numeric_limits<double>::infinity();
+  const double c = s_.curvature;
+  march(x0, y0, azimuth, [&](int l, int i, int j, double t, double) {
+    const float z = pyramid_->level(l)(i, j);
+    if (!std::isnan(z)) best = std::max(best, (z - z0 - c * t * t) / t);
+  });
   return best;
+}
+
+double FarField::far_low_tangent(double x0, double y0, double z0, double azimuth) const {
+  double lowest = std::numeric_limits<double>::infinity();
+  const double c = s_.curvature;
+  // (m - z0)/d - c d is concave in d below z0 and falls with d above it: its least over the
+  // ray's stretch in a block is at one of the stretch's ends.
+  march(x0, y0, azimuth, [&](int l, int i, int j, double t, double out) {
+    const float m = pyramid_->minima(l)(i, j);
+    if (std::isnan(m)) return;
+    lowest = std::min({lowest, (m - z0 - c * t * t) / t, (m - z0 - c * out * out) / out});
+  });
+  return lowest;
 }
 
 void FarField::raise(const Terrain& terrain, const Window& window, const HorizonField& field, int k,
@@ -216,6 +247,22 @@ void FarField::raise(const Terrain& terrain, const Window& window, const Horizon
       const double tangent = far_tangent(col + terrain.origin_col + 0.5, row + terrain.origin_row + 0.5,
                                          terrain.heights(col, row), field.azimuth(cell, k));
       if (tangent > -INFINITY) h = std::max(h, static_cast<float>(std::atan(tangent)));
+    }
+  });
+}
+
+void FarField::lower(const Terrain& terrain, const Window& window, const HorizonField& field, int k,
+                     float* lower) const {
+  if (!pyramid_->has_minima()) return;
+  tbb::parallel_for(0, window.rows, [&](int wr) {
+    for (int wc = 0; wc < window.cols; ++wc) {
+      const std::size_t cell = static_cast<std::size_t>(wr) * window.cols + wc;
+      float& h = lower[cell];
+      if (std::isnan(h)) continue;
+      const int col = window.col0 + wc, row = window.row0 + wr;
+      const double tangent = far_low_tangent(col + terrain.origin_col + 0.5, row + terrain.origin_row + 0.5,
+                                             terrain.heights(col, row), field.azimuth(cell, k));
+      if (tangent < INFINITY) h = std::min(h, static_cast<float>(std::atan(tangent)));
     }
   });
 }

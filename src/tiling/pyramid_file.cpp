@@ -14,7 +14,8 @@ namespace skyview {
 namespace {
 
 constexpr char kMagic[8] = {'S', 'K', 'Y', 'V', 'P', 'Y', 'R', 'M'};
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 2;  // 2: a flags word, and the minima where its bit 0 is set
+constexpr std::uint32_t kHasMinima = 1;
 constexpr std::uint32_t kMaxSource = 64 << 10;
 constexpr int kMaxFirstLevel = 30;
 
@@ -76,6 +77,8 @@ std::string encode_pyramid(const PyramidLevels& p, const std::string& source) {
   if (source.size() > kMaxSource) throw Error("a pyramid's source text is over 64 KiB (internal error)");
   std::size_t cells = 0;
   for (const Grid<float>& g : p.max) cells += g.size();
+  if (!p.min.empty() && p.min.size() != p.max.size()) throw Error("a pyramid's minima and maxima differ in levels");
+  if (!p.min.empty()) cells *= 2;
   std::string out;
   out.reserve(64 + source.size() + 8 * p.relief.size() + 4 * cells + 8);
   out.append(kMagic, sizeof kMagic);
@@ -84,18 +87,23 @@ std::string encode_pyramid(const PyramidLevels& p, const std::string& source) {
   put(out, static_cast<std::uint32_t>(p.width));
   put(out, static_cast<std::uint32_t>(p.height));
   put(out, static_cast<std::uint32_t>(p.max.size()));
+  put(out, static_cast<std::uint32_t>(p.min.empty() ? 0 : kHasMinima));
   put(out, p.lowest);
   put(out, p.highest);
   put(out, static_cast<std::uint32_t>(source.size()));
   out += source;
   for (const double r : p.relief) put(out, r);
-  for (const Grid<float>& g : p.max) {
-    if constexpr (std::endian::native == std::endian::little) {
-      out.append(reinterpret_cast<const char*>(g.data()), g.size() * sizeof(float));
-    } else {
-      for (const float v : g.values()) put(out, v);
+  auto put_levels = [&out](const std::vector<Grid<float>>& levels) {
+    for (const Grid<float>& g : levels) {
+      if constexpr (std::endian::native == std::endian::little) {
+        out.append(reinterpret_cast<const char*>(g.data()), g.size() * sizeof(float));
+      } else {
+        for (const float v : g.values()) put(out, v);
+      }
     }
-  }
+  };
+  put_levels(p.max);
+  put_levels(p.min);
   put(out, fnv1a(out));
   return out;
 }
@@ -116,6 +124,9 @@ PyramidLevels decode_pyramid(std::string_view bytes, const std::string& name, st
   const std::uint32_t width = in.get<std::uint32_t>("its width");
   const std::uint32_t height = in.get<std::uint32_t>("its height");
   const std::uint32_t levels = in.get<std::uint32_t>("its level count");
+  const std::uint32_t flags = in.get<std::uint32_t>("its flags");
+  if (flags & ~kHasMinima) in.fail("flags " + std::to_string(flags) + " this skyview does not know");
+  const bool minima = (flags & kHasMinima) != 0;
   if (first < 1 || first > kMaxFirstLevel) in.fail("first level " + std::to_string(first) + ", not 1 to 30");
   if (width < 1 || height < 1 || width > 0x7fffffffu || height > 0x7fffffffu)
     in.fail("a raster of " + std::to_string(width) + " x " + std::to_string(height) + " cells");
@@ -143,20 +154,25 @@ PyramidLevels decode_pyramid(std::string_view bytes, const std::string& name, st
   }
   std::uint64_t cells = 0;
   for (const auto& [w, h] : sizes) cells += static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h);
+  if (minima) cells *= 2;
   if (in.left() != 4 * cells + 8)
     in.fail(std::to_string(in.left()) + " bytes of levels and checksum where its sizes make " +
             std::to_string(4 * cells + 8));
-  for (const auto& [w, h] : sizes) {
-    Grid<float> g(w, h);
-    const std::string_view data = in.take(g.size() * sizeof(float), "its levels");
-    if constexpr (std::endian::native == std::endian::little) {
-      std::memcpy(g.data(), data.data(), data.size());
-    } else {
-      Reader values(data, name);
-      for (float& v : g.values()) v = values.get<float>("its levels");
+  auto take_levels = [&](std::vector<Grid<float>>& levels) {
+    for (const auto& [w, h] : sizes) {
+      Grid<float> g(w, h);
+      const std::string_view data = in.take(g.size() * sizeof(float), "its levels");
+      if constexpr (std::endian::native == std::endian::little) {
+        std::memcpy(g.data(), data.data(), data.size());
+      } else {
+        Reader values(data, name);
+        for (float& v : g.values()) v = values.get<float>("its levels");
+      }
+      levels.push_back(std::move(g));
     }
-    p.max.push_back(std::move(g));
-  }
+  };
+  take_levels(p.max);
+  if (minima) take_levels(p.min);
   if (source) *source = std::string(text);
   return p;
 }

@@ -67,6 +67,22 @@ double exact_far_tangent(const Terrain& t, double x0, double y0, double z0, doub
   return best;
 }
 
+// The lowest tangent likewise (negative openness).
+double exact_low_tangent(const Terrain& t, double x0, double y0, double z0, double azimuth, double from) {
+  double lowest = INFINITY;
+  const double ux = std::sin(azimuth), uy = -std::cos(azimuth);
+  for (double d = from;; d += 0.05) {
+    const double x = x0 + ux * d - 0.5, y = y0 + uy * d - 0.5;
+    if (x < 0 || y < 0 || x > t.width() - 1 || y > t.height() - 1) break;
+    const int c = std::min(static_cast<int>(x), t.width() - 2), r = std::min(static_cast<int>(y), t.height() - 2);
+    const double fx = x - c, fy = y - r;
+    const double z = (1 - fy) * ((1 - fx) * t.heights(c, r) + fx * t.heights(c + 1, r)) +
+                     fy * ((1 - fx) * t.heights(c, r + 1) + fx * t.heights(c + 1, r + 1));
+    lowest = std::min(lowest, (z - z0) / d);
+  }
+  return lowest;
+}
+
 TEST(FarField, MarchIsConservativeAndWithinItsBound) {
   const Terrain t = hills(300, 220);
   FarFieldSettings s;
@@ -101,16 +117,71 @@ TEST(FarField, MarchIsConservativeAndWithinItsBound) {
   EXPECT_GT(worst, 0.0);
 }
 
-// The band's largest |difference| and the bound the run recorded.
-double max_difference(const std::string& a, const std::string& b, int band) {
-  const RasterBand x = read_band(a, band), y = read_band(b, band);
+// The lowest angles (negative openness) from the min-pooled levels: never above the exact lowest
+// angle beyond H, and within the horizon bound of it.
+TEST(FarField, LowestAnglesFromTheMinimaAreConservativeAndWithinTheBound) {
+  const Terrain t = hills(300, 220);
+  FarFieldSettings s;
+  s.halo_m = 40;
+  s.cell_m = 1;
+  s.diagonal_m = std::sqrt(2.0);
+  s.cells_per_level = 8;
+  auto p = std::make_shared<OverviewPyramid>(t, 1, true);
+  ASSERT_TRUE(p->has_minima());
+  const FarFieldBound bound = far_field_bound(*p, s, std::hypot(300, 220));
+  const FarField far(p, s, Jacobian{1, 0, 0, -1}, 300, 220);
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> col(0, 299), row(0, 219);
   double worst = 0;
-  for (std::size_t i = 0; i < x.values.size(); ++i) {
-    const float u = x.values.values()[i], v = y.values.values()[i];
-    if (std::isnan(u) != std::isnan(v)) return INFINITY;
-    if (!std::isnan(u)) worst = std::max(worst, std::abs(static_cast<double>(u) - v));
+  int rays = 0;
+  for (int n = 0; n < 300; ++n) {
+    const int c = col(rng), r = row(rng);
+    for (int k = 0; k < 16; ++k) {
+      const double az = k * M_PI / 8 + 0.1;
+      const double exact = exact_low_tangent(t, c + 0.5, r + 0.5, t.heights(c, r), az, s.halo_m);
+      if (!std::isfinite(exact)) continue;
+      const double f = far.far_low_tangent(c + 0.5, r + 0.5, t.heights(c, r), az);
+      ASSERT_LE(f, exact + 1e-6) << "cell " << c << ", " << r << " azimuth " << az;
+      worst = std::max(worst, std::atan(exact) - std::atan(f));
+      ++rays;
+    }
   }
-  return worst;
+  ASSERT_GT(rays, 100);
+  EXPECT_LE(worst, bound.horizon);
+  EXPECT_GT(worst, 0.0);
+}
+
+// skyview horizon writes angles of either sign: below the horizontal the far field may also err
+// low (a block's entry is nearer than its points), still within FarFieldBound::horizon.
+TEST(FarField, MarchIsWithinTheHorizonBoundBelowTheHorizontalToo) {
+  const Terrain t = hills(300, 220);
+  FarFieldSettings s;
+  s.halo_m = 40;
+  s.cell_m = 1;
+  s.diagonal_m = std::sqrt(2.0);
+  s.cells_per_level = 8;
+  auto p = std::make_shared<OverviewPyramid>(t, 1);
+  const FarFieldBound bound = far_field_bound(*p, s, std::hypot(300, 220));
+  ASSERT_GE(bound.horizon, bound.angle);
+  ASSERT_LT(bound.horizon, 0.5);
+  const FarField far(p, s, Jacobian{1, 0, 0, -1}, 300, 220);
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> col(0, 299), row(0, 219);
+  double worst = 0;
+  int below = 0;
+  for (int n = 0; n < 300; ++n) {
+    const int c = col(rng), r = row(rng);
+    for (int k = 0; k < 16; ++k) {
+      const double az = k * M_PI / 8 + 0.1;
+      const double exact = exact_far_tangent(t, c + 0.5, r + 0.5, t.heights(c, r), az, s.halo_m);
+      if (!std::isfinite(exact)) continue;
+      const double f = far.far_tangent(c + 0.5, r + 0.5, t.heights(c, r), az);
+      worst = std::max(worst, std::abs(std::atan(f) - std::atan(exact)));
+      below += exact < 0;
+    }
+  }
+  ASSERT_GT(below, 100);  // the case this test is about
+  EXPECT_LE(worst, bound.horizon);
 }
 
 void expect_within_bound(const std::string& dsm, const std::string& dir, const std::string& common, int tile,
@@ -158,6 +229,39 @@ TEST(FarField, TiledSvfWithoutRadiusIsWithinTheBoundOnRealTerrain) {
   expect_within_bound(dem, dir, " --products svf,sky_visibility,openness_positive --samples 1500", 256, 0.05);
 }
 
+// openness_negative's lowest angles beyond the halo come from the pyramid's minima: the band is
+// within the horizon angle bound of a whole unlimited run's.
+void expect_openness_negative_within_bound(const std::string& dsm, const std::string& dir, const std::string& common,
+                                           int tile, double max_error, double sensible) {
+  const std::string opts = " --products openness_negative" + common;
+  ASSERT_EQ(run_skyview("svf " + dsm + " " + dir + "/whole_neg.tif" + opts, dir).exit_code, 0);
+  const std::string out = dir + "/tiled_neg.tif";
+  const RunResult r = run_skyview("svf " + dsm + " " + out + opts + " --tile-size " + std::to_string(tile) +
+                                      " --far-field-error " + std::to_string(max_error),
+                                  dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(metadata_item(out, "FAR_FIELD_OPENNESS_NEGATIVE").find("min-pooled"), std::string::npos);
+  const double bound = std::stod(metadata_item(out, "FAR_FIELD_BOUND_HORIZON_DEG"));
+  const double error = max_difference(out, dir + "/whole_neg.tif", 1);
+  std::printf("openness_negative max error %.3f deg (bound %.3f)\n", error, bound);
+  EXPECT_LE(error, bound + 1e-3);
+  EXPECT_LT(bound, sensible);
+  EXPECT_GT(error, 0.0);
+}
+
+TEST(FarField, TiledOpennessNegativeIsWithinTheBoundOnTheCity) {
+  const std::string dir = temp_dir("far-field-neg-city");
+  const std::string dsm = write_small_city(dir, 240, 200);
+  expect_openness_negative_within_bound(dsm, dir, " --samples 400", 64, 0.2, 30.0);
+}
+
+TEST(FarField, TiledOpennessNegativeIsWithinTheBoundOnRealTerrain) {
+  const std::string dem = "/work/shared/sample_data/terrain/TM1_564_146.tif";
+  if (!std::filesystem::exists(dem)) GTEST_SKIP() << "sample data absent: " << dem;
+  const std::string dir = temp_dir("far-field-neg-terrain");
+  expect_openness_negative_within_bound(dem, dir, " --samples 1500", 256, 0.05, 8.0);
+}
+
 TEST(FarField, MaxErrorSetsTheBoundAndTheOptionIsRefusedWithoutAFarField) {
   const std::string dir = temp_dir("far-field-options");
   const std::string dsm = write_small_city(dir, 240, 200);
@@ -174,12 +278,6 @@ TEST(FarField, MaxErrorSetsTheBoundAndTheOptionIsRefusedWithoutAFarField) {
   expect_one_line_error(run_skyview("svf " + dsm + " " + dir + "/c.tif --tile-size 16 --far-field-error 0", dir),
                         "--far-field-error", 2);
   for (const char* name : {"/a.tif", "/b.tif", "/c.tif"}) EXPECT_FALSE(std::filesystem::exists(dir + name)) << name;
-}
-
-TEST(FarField, HorizonStillNeedsARadiusInTiles) {
-  const std::string dir = temp_dir("far-field-horizon");
-  const std::string dsm = write_small_city(dir);
-  expect_one_line_error(run_skyview("horizon " + dsm + " " + dir + "/h.tif --tile-size 16", dir), "finite --radius", 2);
 }
 
 }  // namespace

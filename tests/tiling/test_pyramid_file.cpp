@@ -20,11 +20,11 @@ namespace {
 
 // A pyramid with nodata over a city (6 x 6 NaN cells: a level-1 cell, whose block grown by one
 // cell they cover), its relief and range not trivial.
-OverviewPyramid city_pyramid() {
+OverviewPyramid city_pyramid(bool minima = false) {
   Terrain t = rasterize(synthetic_city(5), 67, 53, local_grid(67, 53, 1.0));
   for (int r = 10; r < 16; ++r)
     for (int c = 40; c < 46; ++c) t.heights(c, r) = std::numeric_limits<float>::quiet_NaN();
-  return OverviewPyramid(t, 1);
+  return OverviewPyramid(t, 1, minima);
 }
 
 std::string bytes_of(const std::string& path) {
@@ -79,6 +79,33 @@ TEST(PyramidFile, RoundTripsBitForBit) {
   EXPECT_EQ(pyramid_checksum(bytes), tail);
 }
 
+// The minima (kept for negative openness) come back too, after the maxima, and a file without them
+// has none.
+TEST(PyramidFile, MinimaRoundTripWhereKept) {
+  const OverviewPyramid p = city_pyramid(true);
+  ASSERT_TRUE(p.has_minima());
+  const std::string bytes = encode_pyramid(p.levels(), "the city");
+  EXPECT_GT(bytes.size(), encode_pyramid(city_pyramid().levels(), "the city").size());
+  const OverviewPyramid q(decode_pyramid(bytes, "p.bin"));
+  ASSERT_TRUE(q.has_minima());
+  int below = 0;
+  for (int l = p.first_level(); l <= p.last_level(); ++l) {
+    const Grid<float>&a = p.minima(l), &b = q.minima(l);
+    ASSERT_EQ(b.width(), a.width());
+    ASSERT_EQ(b.height(), a.height());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      ASSERT_EQ(std::memcmp(&a.data()[i], &b.data()[i], sizeof(float)), 0) << "level " << l << " cell " << i;
+      below += a.data()[i] < p.level(l).data()[i];
+    }
+  }
+  EXPECT_GT(below, 0);  // minima, not a second copy of the maxima
+  EXPECT_FALSE(OverviewPyramid(decode_pyramid(encode_pyramid(city_pyramid().levels(), ""), "p.bin")).has_minima());
+  // A flag this version does not know (bytes 28..31, after the level count).
+  std::string unknown = bytes;
+  unknown[28] = 4;
+  EXPECT_NE(refusal(unknown).find("checksum"), std::string::npos);  // damaged: the checksum says so first
+}
+
 TEST(PyramidFile, DamagedTruncatedAndForeignFilesAreOneLineErrors) {
   const std::string good = encode_pyramid(city_pyramid().levels(), "the city");
   ASSERT_EQ(refusal(good), "");
@@ -91,8 +118,8 @@ TEST(PyramidFile, DamagedTruncatedAndForeignFilesAreOneLineErrors) {
   EXPECT_NE(refusal(good.substr(0, 5)).find("it ends before its magic"), std::string::npos);
   EXPECT_NE(refusal("GIF89a this is no pyramid at all").find("does not start with SKYVPYRM"), std::string::npos);
   std::string future = good;
-  future[8] = 2;  // version 2
-  EXPECT_NE(refusal(future).find("format version 2, this skyview reads 1"), std::string::npos);
+  future[8] = 3;  // version 3
+  EXPECT_NE(refusal(future).find("format version 3, this skyview reads 2"), std::string::npos);
   EXPECT_NE(refusal("").find("ends before"), std::string::npos);
   // A checksum made right over sizes that are wrong: the sizes are checked too.
   PyramidLevels lying = city_pyramid().levels();

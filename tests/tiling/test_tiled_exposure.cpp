@@ -151,19 +151,17 @@ TEST(TiledExposure, MemoryModelAndALimitBelowTheWholeRun) {
   EXPECT_TRUE(same_bands(dir + "/limited.tif", dir + "/whole.tif"));
 }
 
-TEST(TiledExposure, RefusesTilesWithoutARadiusAndAPreview) {
+// (Tiles without --radius add the far field: test_far_field_horizon_exposure.cpp.)
+TEST(TiledExposure, RefusesAPreviewAndAMosaicThatIsNotAVrt) {
   const std::string dir = temp_dir("tiled-exposure-bad");
   const std::string dsm = write_small_city(dir);
-  expect_one_line_error(run_skyview("exposure " + dsm + " " + dir + "/a.tif --tile-size 20" + kDay, dir),
-                        "finite --radius", 2);
   expect_one_line_error(
       run_skyview("exposure " + dsm + " " + dir + "/b.tif --tile-size 20 --preview " + dir + "/b.png" + kCommon, dir),
       "--preview needs the whole raster", 2);
   expect_one_line_error(
       run_skyview("exposure " + dsm + " " + dir + "/c.tif --tile-size 20 --tiles-dir " + dir + "/t" + kCommon, dir),
       ".vrt", 2);
-  for (const char* name : {"/a.tif", "/b.tif", "/b.png", "/c.tif"})
-    EXPECT_FALSE(std::filesystem::exists(dir + name)) << name;
+  for (const char* name : {"/b.tif", "/b.png", "/c.tif"}) EXPECT_FALSE(std::filesystem::exists(dir + name)) << name;
 }
 
 }  // namespace

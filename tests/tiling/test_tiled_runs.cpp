@@ -144,7 +144,6 @@ TEST(TiledRuns, BadOptionsExitTwo) {
                         "--tile-size must be at least 1", 2);
   expect_one_line_error(run_skyview("svf " + dsm + " " + out + " --radius 9 --memory-limit 12Q", dir),
                         "--memory-limit '12Q' is not a size", 2);
-  expect_one_line_error(run_skyview("horizon " + dsm + " " + out + " --tile-size 16", dir), "finite --radius", 2);
   expect_one_line_error(run_skyview("svf " + dsm + " " + out + " --radius 9 --tile-size 16 --check-cells 100", dir),
                         "--check-cells is not available", 2);
   EXPECT_FALSE(std::filesystem::exists(out));

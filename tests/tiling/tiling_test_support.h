@@ -4,6 +4,7 @@
 #include <gdal_priv.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -89,6 +90,19 @@ inline ::testing::AssertionResult same_bands(const std::string& a, const std::st
     }
   }
   return ::testing::AssertionSuccess();
+}
+
+// Band `band`'s largest |difference| between `a` and `b` over every cell; infinite where one is
+// nodata and the other not.
+inline double max_difference(const std::string& a, const std::string& b, int band) {
+  const RasterBand x = read_band(a, band), y = read_band(b, band);
+  double worst = 0;
+  for (std::size_t i = 0; i < x.values.size(); ++i) {
+    const float u = x.values.values()[i], v = y.values.values()[i];
+    if (std::isnan(u) != std::isnan(v)) return INFINITY;
+    if (!std::isnan(u)) worst = std::max(worst, std::abs(static_cast<double>(u) - v));
+  }
+  return worst;
 }
 
 }  // namespace skyview::test

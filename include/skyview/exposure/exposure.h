@@ -45,6 +45,9 @@ struct ExposureRequest {
   EdgeMode edge = EdgeMode::open;
   // Horizons held at a time by engines that find all of a cell's directions together.
   std::size_t horizon_bytes = kHorizonBlockBytes;
+  // A tiled run at unlimited radius: raises the engine's horizons (within the halo) by the far
+  // field beyond it (docs/tiling.md); every cell's search then counts as unlimited.
+  std::shared_ptr<const FarHorizons> far_field;
 };
 
 // Wh/m² over the period (NaN on nodata cells).

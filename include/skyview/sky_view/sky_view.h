@@ -125,6 +125,10 @@ class FarHorizons {
   // sectors' azimuths (HorizonField::azimuth).
   virtual void raise(const Terrain& terrain, const Window& window, const HorizonField& field, int k,
                      float* upper) const = 0;
+  // Lowers direction k's lowest angles (`lower`, laid out as `upper`) by the terrain beyond the
+  // method's radius, for negative openness; by default they stay the method's.
+  virtual void lower(const Terrain& /*terrain*/, const Window& /*window*/, const HorizonField& /*field*/, int /*k*/,
+                     float* /*lower*/) const {}
 };
 
 // The products of `window`'s cells straight from a method, so that memory does not grow with the

@@ -20,10 +20,11 @@ namespace skyview {
 // `first_level` (cells of 2^first_level x 2^first_level raster cells) up to one cell.
 class OverviewPyramid {
  public:
-  // Reads the raster once, a strip of rows at a time (never whole).
-  OverviewPyramid(const TerrainReader& reader, int first_level);
+  // Reads the raster once, a strip of rows at a time (never whole). With `keep_minima` the levels'
+  // minima are kept too (min-pooled, for the lowest angles of negative openness).
+  OverviewPyramid(const TerrainReader& reader, int first_level, bool keep_minima = false);
   // Pyramid of a terrain already in memory (tests).
-  OverviewPyramid(const Terrain& terrain, int first_level);
+  OverviewPyramid(const Terrain& terrain, int first_level, bool keep_minima = false);
   // A pyramid as stored (decode_pyramid checked its sizes).
   explicit OverviewPyramid(PyramidLevels levels) : p_(std::move(levels)) {}
 
@@ -31,6 +32,9 @@ class OverviewPyramid {
   int last_level() const { return p_.first_level + static_cast<int>(p_.max.size()) - 1; }
   // Level l's maxima (NaN where every cell below is nodata).
   const Grid<float>& level(int l) const { return p_.max[static_cast<std::size_t>(l - p_.first_level)]; }
+  // Level l's minima (of the same grown blocks); only where kept.
+  bool has_minima() const { return !p_.min.empty(); }
+  const Grid<float>& minima(int l) const { return p_.min[static_cast<std::size_t>(l - p_.first_level)]; }
   // The largest relief (maximum less minimum) within one cell of level l, metres.
   double relief(int l) const { return p_.relief[static_cast<std::size_t>(l - p_.first_level)]; }
   // The raster's lowest and highest valid heights (relative to the base height).
@@ -48,7 +52,8 @@ class OverviewPyramid {
 
 // The far field's error, for a halo of H metres on a pyramid (docs/tiling.md derives it).
 struct FarFieldBound {
-  double angle = 0;           // radians: |horizon angle - exact| in any direction, where above 0
+  double angle = 0;           // radians: |horizon angle - exact| in any direction, where both are above 0
+  double horizon = 0;         // radians: |horizon angle - exact| in any direction, of any sign (skyview horizon)
   double svf = 0;             // |svf - exact svf| (also svf_surface's, openness in degrees: angle)
   double sky_visibility = 0;  // |sky_visibility - exact|
 };
@@ -74,13 +79,22 @@ class FarField final : public FarHorizons {
            int raster_width, int raster_height);
   void raise(const Terrain& terrain, const Window& window, const HorizonField& field, int k,
              float* upper) const override;
+  // With the pyramid's minima: the lowest far angle, from each crossed block's minimum at whichever
+  // end of the ray's stretch in it gives the lower angle (never above the exact one).
+  void lower(const Terrain& terrain, const Window& window, const HorizonField& field, int k,
+             float* lower) const override;
   // The tangent of the highest far-field angle from a point at raster pixel (x, y) (cell centres at
   // .5) and height z along azimuth `azimuth`; -inf where the ray meets no valid cell beyond H.
   double far_tangent(double x, double y, double z, double azimuth) const;
+  // The tangent of the lowest far-field angle likewise (needs the minima); +inf where none.
+  double far_low_tangent(double x, double y, double z, double azimuth) const;
   const FarFieldSettings& settings() const { return s_; }
   const std::shared_ptr<const OverviewPyramid>& pyramid() const { return pyramid_; }
 
  private:
+  // Walks the crossed cells of every level beyond H: visit(level, i, j, entry, exit distance).
+  template <class Visit>
+  void march(double x, double y, double azimuth, Visit&& visit) const;
   std::shared_ptr<const OverviewPyramid> pyramid_;
   FarFieldSettings s_;
   Jacobian centre_;
