@@ -9,10 +9,12 @@
 //
 //   magic "SKYVPYRM", u32 version (2), u32 first level (1 to 30), u32 raster width, u32 raster
 //   height (1 to 2^31 - 1), u32 levels (as many as halving the first level to one cell gives), u32
-//   flags (bit 0: the minima follow the maxima; no other bit set), f64 lowest, f64 highest, u32 source length (at most 64 KiB) and its bytes (what the pyramid was
-//   built from, compared by whoever reuses it), levels f64 reliefs, then each level's float32
-//   maxima row by row (level first_level: ceil(width / 2^first) x ceil(height / 2^first) cells,
-//   each next one half as many per side rounded up), the minima likewise where flagged, and last the u64 FNV-1a of every byte before.
+//   flags (bit 0: the minima follow the maxima; no other bit set), f64 lowest, f64 highest, u32
+//   source length (at most 64 KiB) and its bytes (what the pyramid was built from, compared by
+//   whoever reuses it), levels f64 reliefs, then each level's float32 maxima row by row (level
+//   first_level: ceil(width / 2^first) x ceil(height / 2^first) cells, each next one half as many
+//   per side rounded up), the minima likewise where flagged, and last the u64 FNV-1a of every byte
+//   before.
 #include <cmath>
 #include <string>
 #include <string_view>
