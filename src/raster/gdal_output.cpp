@@ -53,6 +53,9 @@ CPLStringList creation_options(const std::string& format, GDALDataType type, con
   if (format == "GTiff") {
     opts.SetNameValue("TILED", "YES");
     opts.SetNameValue("PREDICTOR", type == GDT_Float32 ? "3" : "2");
+    // DEFLATE's fastest level: lossless like the rest, 4% larger than GDAL's default level 6 on the
+    // five float bands of skyview svf at 1000 x 1000, and 0.2 of its 1.7 CPU-s faster (Dec 7).
+    opts.SetNameValue("ZLEVEL", "1");
     // Bands are written one after another (BandWriter): with pixel interleaving every tile would
     // hold all bands and be compressed again as each band arrives.
     opts.SetNameValue("INTERLEAVE", "BAND");
