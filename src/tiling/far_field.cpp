@@ -236,34 +236,41 @@ double FarField::far_low_tangent(double x0, double y0, double z0, double azimuth
   return lowest;
 }
 
-void FarField::raise(const Terrain& terrain, const Window& window, const HorizonField& field, int k,
-                     float* upper) const {
+namespace {
+
+// Each valid cell of the window's plane k moved by the far field: `toward(h, cell's position,
+// height, azimuth)` gives its new angle.
+template <class Toward>
+void move_plane(const Terrain& terrain, const Window& window, const HorizonField& field, int k, float* plane,
+                Toward toward) {
   tbb::parallel_for(0, window.rows, [&](int wr) {
     for (int wc = 0; wc < window.cols; ++wc) {
       const std::size_t cell = static_cast<std::size_t>(wr) * window.cols + wc;
-      float& h = upper[cell];
+      float& h = plane[cell];
       if (std::isnan(h)) continue;
       const int col = window.col0 + wc, row = window.row0 + wr;
-      const double tangent = far_tangent(col + terrain.origin_col + 0.5, row + terrain.origin_row + 0.5,
-                                         terrain.heights(col, row), field.azimuth(cell, k));
-      if (tangent > -INFINITY) h = std::max(h, static_cast<float>(std::atan(tangent)));
+      h = toward(h, col + terrain.origin_col + 0.5, row + terrain.origin_row + 0.5, terrain.heights(col, row),
+                 field.azimuth(cell, k));
     }
+  });
+}
+
+}  // namespace
+
+void FarField::raise(const Terrain& terrain, const Window& window, const HorizonField& field, int k,
+                     float* upper) const {
+  move_plane(terrain, window, field, k, upper, [this](float h, double x, double y, double z, double azimuth) {
+    const double tangent = far_tangent(x, y, z, azimuth);
+    return tangent > -INFINITY ? std::max(h, static_cast<float>(std::atan(tangent))) : h;
   });
 }
 
 void FarField::lower(const Terrain& terrain, const Window& window, const HorizonField& field, int k,
                      float* lower) const {
   if (!pyramid_->has_minima()) return;
-  tbb::parallel_for(0, window.rows, [&](int wr) {
-    for (int wc = 0; wc < window.cols; ++wc) {
-      const std::size_t cell = static_cast<std::size_t>(wr) * window.cols + wc;
-      float& h = lower[cell];
-      if (std::isnan(h)) continue;
-      const int col = window.col0 + wc, row = window.row0 + wr;
-      const double tangent = far_low_tangent(col + terrain.origin_col + 0.5, row + terrain.origin_row + 0.5,
-                                             terrain.heights(col, row), field.azimuth(cell, k));
-      if (tangent < INFINITY) h = std::min(h, static_cast<float>(std::atan(tangent)));
-    }
+  move_plane(terrain, window, field, k, lower, [this](float h, double x, double y, double z, double azimuth) {
+    const double tangent = far_low_tangent(x, y, z, azimuth);
+    return tangent < INFINITY ? std::min(h, static_cast<float>(std::atan(tangent))) : h;
   });
 }
 
