@@ -24,6 +24,35 @@ Terrain hills(int w, int h) {
   return t;
 }
 
+// The far field of the hills' march tests: a 40 m halo on 1 m cells, levels read from 8 cells on.
+FarFieldSettings hills_settings() {
+  FarFieldSettings s;
+  s.halo_m = 40;
+  s.cell_m = 1;
+  s.diagonal_m = std::sqrt(2.0);
+  s.cells_per_level = 8;
+  return s;
+}
+
+// The surface between cell centres (the mesh the methods read) at pixel (x, y), centres at integers.
+double bilinear(const Terrain& t, double x, double y) {
+  const int c = std::min(static_cast<int>(x), t.width() - 2), r = std::min(static_cast<int>(y), t.height() - 2);
+  const double fx = x - c, fy = y - r;
+  return (1 - fy) * ((1 - fx) * t.heights(c, r) + fx * t.heights(c + 1, r)) +
+         fy * ((1 - fx) * t.heights(c, r + 1) + fx * t.heights(c + 1, r + 1));
+}
+
+// visit(col, row, azimuth) for 300 random cells of a 300 x 220 raster (seeded) and 16 azimuths each.
+template <class Visit>
+void for_each_sample_ray(unsigned seed, Visit&& visit) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> col(0, 299), row(0, 219);
+  for (int n = 0; n < 300; ++n) {
+    const int c = col(rng), r = row(rng);
+    for (int k = 0; k < 16; ++k) visit(c, r, k * M_PI / 8 + 0.1);
+  }
+}
+
 TEST(OverviewPyramid, EachCellHoldsTheMaximumOfItsBlockGrownByOneCell) {
   const Terrain t = hills(70, 45);
   const OverviewPyramid p(t, 2);
@@ -58,10 +87,7 @@ double exact_far_tangent(const Terrain& t, double x0, double y0, double z0, doub
   for (double d = from;; d += 0.05) {
     const double x = x0 + ux * d - 0.5, y = y0 + uy * d - 0.5;  // centre-based coordinates
     if (x < 0 || y < 0 || x > t.width() - 1 || y > t.height() - 1) break;
-    const int c = std::min(static_cast<int>(x), t.width() - 2), r = std::min(static_cast<int>(y), t.height() - 2);
-    const double fx = x - c, fy = y - r;
-    const double z = (1 - fy) * ((1 - fx) * t.heights(c, r) + fx * t.heights(c + 1, r)) +
-                     fy * ((1 - fx) * t.heights(c, r + 1) + fx * t.heights(c + 1, r + 1));
+    const double z = bilinear(t, x, y);
     best = std::max(best, (z - z0) / d);
   }
   return best;
@@ -74,10 +100,7 @@ double exact_low_tangent(const Terrain& t, double x0, double y0, double z0, doub
   for (double d = from;; d += 0.05) {
     const double x = x0 + ux * d - 0.5, y = y0 + uy * d - 0.5;
     if (x < 0 || y < 0 || x > t.width() - 1 || y > t.height() - 1) break;
-    const int c = std::min(static_cast<int>(x), t.width() - 2), r = std::min(static_cast<int>(y), t.height() - 2);
-    const double fx = x - c, fy = y - r;
-    const double z = (1 - fy) * ((1 - fx) * t.heights(c, r) + fx * t.heights(c + 1, r)) +
-                     fy * ((1 - fx) * t.heights(c, r + 1) + fx * t.heights(c + 1, r + 1));
+    const double z = bilinear(t, x, y);
     lowest = std::min(lowest, (z - z0) / d);
   }
   return lowest;
@@ -85,33 +108,23 @@ double exact_low_tangent(const Terrain& t, double x0, double y0, double z0, doub
 
 TEST(FarField, MarchIsConservativeAndWithinItsBound) {
   const Terrain t = hills(300, 220);
-  FarFieldSettings s;
-  s.halo_m = 40;
-  s.cell_m = 1;
-  s.diagonal_m = std::sqrt(2.0);
-  s.cells_per_level = 8;
+  const FarFieldSettings s = hills_settings();
   auto p = std::make_shared<OverviewPyramid>(t, 1);
   const double diagonal = std::hypot(300, 220);
   const FarFieldBound bound = far_field_bound(*p, s, diagonal);
   ASSERT_GT(bound.angle, 0.0);
   ASSERT_LT(bound.angle, 0.5);  // a bound that says something
   const FarField far(p, s, Jacobian{1, 0, 0, -1}, 300, 220);
-  std::mt19937 rng(7);
-  std::uniform_int_distribution<int> col(0, 299), row(0, 219);
   double worst = 0;
   int rays = 0;
-  for (int n = 0; n < 300; ++n) {
-    const int c = col(rng), r = row(rng);
-    for (int k = 0; k < 16; ++k) {
-      const double az = k * M_PI / 8 + 0.1;
-      const double exact = exact_far_tangent(t, c + 0.5, r + 0.5, t.heights(c, r), az, s.halo_m);
-      if (!(exact > 0)) continue;  // the bound and the bands concern angles above the horizontal
-      const double f = far.far_tangent(c + 0.5, r + 0.5, t.heights(c, r), az);
-      ASSERT_GE(f, exact - 1e-6) << "cell " << c << ", " << r << " azimuth " << az;
-      worst = std::max(worst, std::atan(f) - std::atan(exact));
-      ++rays;
-    }
-  }
+  for_each_sample_ray(7, [&](int c, int r, double az) {
+    const double exact = exact_far_tangent(t, c + 0.5, r + 0.5, t.heights(c, r), az, s.halo_m);
+    if (!(exact > 0)) return;  // the bound and the bands concern angles above the horizontal
+    const double f = far.far_tangent(c + 0.5, r + 0.5, t.heights(c, r), az);
+    ASSERT_GE(f, exact - 1e-6) << "cell " << c << ", " << r << " azimuth " << az;
+    worst = std::max(worst, std::atan(f) - std::atan(exact));
+    ++rays;
+  });
   ASSERT_GT(rays, 100);
   EXPECT_LE(worst, bound.angle);
   EXPECT_GT(worst, 0.0);
@@ -121,31 +134,21 @@ TEST(FarField, MarchIsConservativeAndWithinItsBound) {
 // angle beyond H, and within the horizon bound of it.
 TEST(FarField, LowestAnglesFromTheMinimaAreConservativeAndWithinTheBound) {
   const Terrain t = hills(300, 220);
-  FarFieldSettings s;
-  s.halo_m = 40;
-  s.cell_m = 1;
-  s.diagonal_m = std::sqrt(2.0);
-  s.cells_per_level = 8;
+  const FarFieldSettings s = hills_settings();
   auto p = std::make_shared<OverviewPyramid>(t, 1, true);
   ASSERT_TRUE(p->has_minima());
   const FarFieldBound bound = far_field_bound(*p, s, std::hypot(300, 220));
   const FarField far(p, s, Jacobian{1, 0, 0, -1}, 300, 220);
-  std::mt19937 rng(5);
-  std::uniform_int_distribution<int> col(0, 299), row(0, 219);
   double worst = 0;
   int rays = 0;
-  for (int n = 0; n < 300; ++n) {
-    const int c = col(rng), r = row(rng);
-    for (int k = 0; k < 16; ++k) {
-      const double az = k * M_PI / 8 + 0.1;
-      const double exact = exact_low_tangent(t, c + 0.5, r + 0.5, t.heights(c, r), az, s.halo_m);
-      if (!std::isfinite(exact)) continue;
-      const double f = far.far_low_tangent(c + 0.5, r + 0.5, t.heights(c, r), az);
-      ASSERT_LE(f, exact + 1e-6) << "cell " << c << ", " << r << " azimuth " << az;
-      worst = std::max(worst, std::atan(exact) - std::atan(f));
-      ++rays;
-    }
-  }
+  for_each_sample_ray(5, [&](int c, int r, double az) {
+    const double exact = exact_low_tangent(t, c + 0.5, r + 0.5, t.heights(c, r), az, s.halo_m);
+    if (!std::isfinite(exact)) return;
+    const double f = far.far_low_tangent(c + 0.5, r + 0.5, t.heights(c, r), az);
+    ASSERT_LE(f, exact + 1e-6) << "cell " << c << ", " << r << " azimuth " << az;
+    worst = std::max(worst, std::atan(exact) - std::atan(f));
+    ++rays;
+  });
   ASSERT_GT(rays, 100);
   EXPECT_LE(worst, bound.horizon);
   EXPECT_GT(worst, 0.0);
@@ -155,43 +158,28 @@ TEST(FarField, LowestAnglesFromTheMinimaAreConservativeAndWithinTheBound) {
 // low (a block's entry is nearer than its points), still within FarFieldBound::horizon.
 TEST(FarField, MarchIsWithinTheHorizonBoundBelowTheHorizontalToo) {
   const Terrain t = hills(300, 220);
-  FarFieldSettings s;
-  s.halo_m = 40;
-  s.cell_m = 1;
-  s.diagonal_m = std::sqrt(2.0);
-  s.cells_per_level = 8;
+  const FarFieldSettings s = hills_settings();
   auto p = std::make_shared<OverviewPyramid>(t, 1);
   const FarFieldBound bound = far_field_bound(*p, s, std::hypot(300, 220));
   ASSERT_GE(bound.horizon, bound.angle);
   ASSERT_LT(bound.horizon, 0.5);
   const FarField far(p, s, Jacobian{1, 0, 0, -1}, 300, 220);
-  std::mt19937 rng(11);
-  std::uniform_int_distribution<int> col(0, 299), row(0, 219);
   double worst = 0;
   int below = 0;
-  for (int n = 0; n < 300; ++n) {
-    const int c = col(rng), r = row(rng);
-    for (int k = 0; k < 16; ++k) {
-      const double az = k * M_PI / 8 + 0.1;
-      const double exact = exact_far_tangent(t, c + 0.5, r + 0.5, t.heights(c, r), az, s.halo_m);
-      if (!std::isfinite(exact)) continue;
-      const double f = far.far_tangent(c + 0.5, r + 0.5, t.heights(c, r), az);
-      worst = std::max(worst, std::abs(std::atan(f) - std::atan(exact)));
-      below += exact < 0;
-    }
-  }
+  for_each_sample_ray(11, [&](int c, int r, double az) {
+    const double exact = exact_far_tangent(t, c + 0.5, r + 0.5, t.heights(c, r), az, s.halo_m);
+    if (!std::isfinite(exact)) return;
+    const double f = far.far_tangent(c + 0.5, r + 0.5, t.heights(c, r), az);
+    worst = std::max(worst, std::abs(std::atan(f) - std::atan(exact)));
+    below += exact < 0;
+  });
   ASSERT_GT(below, 100);  // the case this test is about
   EXPECT_LE(worst, bound.horizon);
 }
 
 void expect_within_bound(const std::string& dsm, const std::string& dir, const std::string& common, int tile,
                          double max_error) {
-  ASSERT_EQ(run_skyview("svf " + dsm + " " + dir + "/whole.tif" + common, dir).exit_code, 0);
-  const std::string out = dir + "/tiled.tif";
-  const RunResult r = run_skyview("svf " + dsm + " " + out + common + " --tile-size " + std::to_string(tile) +
-                                      " --far-field-error " + std::to_string(max_error),
-                                  dir);
-  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string out = whole_and_tiled("svf", dsm, dir, common, tile, max_error);
   const double halo = std::stod(metadata_item(out, "FAR_FIELD_HALO_M"));
   const double bound_svf = std::stod(metadata_item(out, "FAR_FIELD_BOUND_SVF"));
   const double bound_vis = std::stod(metadata_item(out, "FAR_FIELD_BOUND_SKY_VISIBILITY"));
@@ -223,7 +211,7 @@ TEST(FarField, TiledSvfWithoutRadiusIsWithinTheBoundOnTheCity) {
 }
 
 TEST(FarField, TiledSvfWithoutRadiusIsWithinTheBoundOnRealTerrain) {
-  const std::string dem = "/work/shared/sample_data/terrain/TM1_564_146.tif";
+  const std::string dem = real_terrain();
   if (!std::filesystem::exists(dem)) GTEST_SKIP() << "sample data absent: " << dem;
   const std::string dir = temp_dir("far-field-terrain");
   expect_within_bound(dem, dir, " --products svf,sky_visibility,openness_positive --samples 1500", 256, 0.05);
@@ -233,16 +221,10 @@ TEST(FarField, TiledSvfWithoutRadiusIsWithinTheBoundOnRealTerrain) {
 // within the horizon angle bound of a whole unlimited run's.
 void expect_openness_negative_within_bound(const std::string& dsm, const std::string& dir, const std::string& common,
                                            int tile, double max_error, double sensible) {
-  const std::string opts = " --products openness_negative" + common;
-  ASSERT_EQ(run_skyview("svf " + dsm + " " + dir + "/whole_neg.tif" + opts, dir).exit_code, 0);
-  const std::string out = dir + "/tiled_neg.tif";
-  const RunResult r = run_skyview("svf " + dsm + " " + out + opts + " --tile-size " + std::to_string(tile) +
-                                      " --far-field-error " + std::to_string(max_error),
-                                  dir);
-  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string out = whole_and_tiled("svf", dsm, dir, " --products openness_negative" + common, tile, max_error);
   EXPECT_NE(metadata_item(out, "FAR_FIELD_OPENNESS_NEGATIVE").find("min-pooled"), std::string::npos);
   const double bound = std::stod(metadata_item(out, "FAR_FIELD_BOUND_HORIZON_DEG"));
-  const double error = max_difference(out, dir + "/whole_neg.tif", 1);
+  const double error = max_difference(out, dir + "/whole.tif", 1);
   std::printf("openness_negative max error %.3f deg (bound %.3f)\n", error, bound);
   EXPECT_LE(error, bound + 1e-3);
   EXPECT_LT(bound, sensible);
@@ -256,7 +238,7 @@ TEST(FarField, TiledOpennessNegativeIsWithinTheBoundOnTheCity) {
 }
 
 TEST(FarField, TiledOpennessNegativeIsWithinTheBoundOnRealTerrain) {
-  const std::string dem = "/work/shared/sample_data/terrain/TM1_564_146.tif";
+  const std::string dem = real_terrain();
   if (!std::filesystem::exists(dem)) GTEST_SKIP() << "sample data absent: " << dem;
   const std::string dir = temp_dir("far-field-neg-terrain");
   expect_openness_negative_within_bound(dem, dir, " --samples 1500", 256, 0.05, 8.0);

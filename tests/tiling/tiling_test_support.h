@@ -105,4 +105,24 @@ inline double max_difference(const std::string& a, const std::string& b, int ban
   return worst;
 }
 
+// The real LiDAR terrain tile of ../shared/sample_data (tests skip where it is absent).
+inline std::string real_terrain() { return std::string(SKYVIEW_SHARED_DIR) + "/sample_data/terrain/TM1_564_146.tif"; }
+
+// Runs `command` whole into dir/whole.tif and tiled into dir/tiled.tif (both with `common`, which
+// makes every crossing exact, so that what differs is the far field alone); returns the tiled path.
+inline std::string whole_and_tiled(const std::string& command, const std::string& dsm, const std::string& dir,
+                                   const std::string& common, int tile, double far_error) {
+  const RunResult whole = run_skyview(command + " " + dsm + " " + dir + "/whole.tif --overwrite" + common, dir);
+  EXPECT_EQ(whole.exit_code, 0) << whole.err;
+  const std::string out = dir + "/tiled.tif";
+  const RunResult r = run_skyview(command + " " + dsm + " " + out + " --overwrite" + common + " --tile-size " +
+                                      std::to_string(tile) + " --far-field-error " + std::to_string(far_error),
+                                  dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GT(std::stoi(metadata_item(out, "TILES")), 1);
+  EXPECT_LE(std::stod(metadata_item(out, "FAR_FIELD_BOUND_SVF")), far_error);
+  EXPECT_EQ(metadata_item(out, "RADIUS_M").rfind("unlimited", 0), 0u);
+  return out;
+}
+
 }  // namespace skyview::test
